@@ -9,7 +9,16 @@
 #   ap_add_fuzz_target(<name> SOURCES ... [LIBS ...])
 #       In the fuzz preset: a libFuzzer binary fuzz_<name>. In every preset: a plain
 #       replay driver replay_<name> and a ctest (label fuzz) that replays
-#       fuzz/corpus/<name> and fuzz/regressions/<name>.
+#       fuzz/corpus/<name> and fuzz/regressions/<name>. Every target is listed in
+#       <build>/fuzz_targets.txt (name, group, fuzz binary or "-", replay binary; tab-separated),
+#       which `axisproof fuzz`, ci/nightly-fuzz and .clusterfuzzlite/build.sh read.
+#   <build>/core_libs.txt lists each core library and its archive (the Cortex-M4 size table
+#   and symbol check read it).
+#
+# AP_MCU_ONLY (the m4 preset): only protocol/codec, core and firmware/m4 are configured;
+# ap_add_test, ap_add_fuzz_target and ap_add_bench do nothing.
+# AP_FUZZ_ENGINE (set by .clusterfuzzlite/build.sh from $LIB_FUZZING_ENGINE): link flags of an
+# external fuzzing engine, used instead of -fsanitize=fuzzer.
 
 set(AP_CORE_FLAGS -fno-exceptions -fno-rtti)
 set(AP_CORE_LIBS "" CACHE INTERNAL "core libraries")
@@ -26,12 +35,15 @@ function(ap_core_library name)
   target_compile_options(${name} PRIVATE ${AP_CORE_FLAGS})
   target_link_libraries(${name} PUBLIC ap_codec ${A_DEPS})
   add_custom_command(TARGET ${name} POST_BUILD
-    COMMAND ${CMAKE_SOURCE_DIR}/ci/check-no-heap $<TARGET_FILE:${name}>
+    COMMAND ${CMAKE_COMMAND} -E env NM=${CMAKE_NM} ${CMAKE_SOURCE_DIR}/ci/check-no-heap $<TARGET_FILE:${name}>
     COMMENT "heap check: ${name}" VERBATIM)
   set(AP_CORE_LIBS ${AP_CORE_LIBS} ${name} CACHE INTERNAL "core libraries")
 endfunction()
 
 function(ap_add_test name)
+  if(AP_MCU_ONLY)
+    return()
+  endif()
   cmake_parse_arguments(A "" "LABEL" "SOURCES;LIBS" ${ARGN})
   if(NOT A_LABEL MATCHES "^(unit|property|proof|fuzz|e2e)$")
     message(FATAL_ERROR "ap_add_test(${name}): LABEL must be unit, property, proof, fuzz or e2e")
@@ -44,7 +56,11 @@ function(ap_add_test name)
 endfunction()
 
 function(ap_add_fuzz_target name)
+  if(AP_MCU_ONLY)
+    return()
+  endif()
   cmake_parse_arguments(A "" "" "SOURCES;LIBS" ${ARGN})
+  get_filename_component(_group ${CMAKE_CURRENT_SOURCE_DIR} NAME)
   add_executable(replay_${name} ${A_SOURCES} ${CMAKE_SOURCE_DIR}/fuzz/replay_main.cpp)
   target_link_libraries(replay_${name} PRIVATE ${A_LIBS})
   add_test(NAME fuzz.${name}.replay
@@ -53,9 +69,18 @@ function(ap_add_fuzz_target name)
   if(AP_FUZZ)
     add_executable(fuzz_${name} ${A_SOURCES})
     target_link_libraries(fuzz_${name} PRIVATE ${A_LIBS})
-    target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
+    if(AP_FUZZ_ENGINE)
+      separate_arguments(_engine UNIX_COMMAND "${AP_FUZZ_ENGINE}")
+      target_link_options(fuzz_${name} PRIVATE ${_engine})
+    else()
+      target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
+    endif()
     set_property(GLOBAL APPEND PROPERTY AP_FUZZ_TARGETS ${name})
+    set(_fuzz_bin $<TARGET_FILE:fuzz_${name}>)
+  else()
+    set(_fuzz_bin -)
   endif()
+  set_property(GLOBAL APPEND PROPERTY AP_FUZZ_LIST_LINES "${name}\t${_group}\t${_fuzz_bin}\t$<TARGET_FILE:replay_${name}>")
 endfunction()
 
 include(GoogleTest)
@@ -63,8 +88,34 @@ include(GoogleTest)
 # ap_add_bench(<name> SOURCES ... [LIBS ...]): a Google Benchmark executable; its path is
 # listed in <build>/benchmarks.txt, which `axisproof bench` runs.
 function(ap_add_bench name)
+  if(AP_MCU_ONLY)
+    return()
+  endif()
   cmake_parse_arguments(A "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_LIBS} benchmark::benchmark benchmark::benchmark_main)
   set_property(GLOBAL APPEND PROPERTY AP_BENCHMARKS $<TARGET_FILE:${name}>)
 endfunction()
+
+# Written once the whole tree is configured (deferred to the end of the top-level directory).
+function(_ap_write_lists)
+  get_property(_lines GLOBAL PROPERTY AP_FUZZ_LIST_LINES)
+  set(_text "")
+  foreach(_l IN LISTS _lines)
+    string(APPEND _text "${_l}\n")
+  endforeach()
+  file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/fuzz_targets.txt CONTENT "${_text}")
+  set(_text "")
+  foreach(_lib IN LISTS AP_CORE_LIBS)
+    string(APPEND _text "${_lib}\t$<TARGET_FILE:${_lib}>\n")
+  endforeach()
+  file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/core_libs.txt CONTENT "${_text}")
+  # .clusterfuzzlite/build.sh must keep working with the standard OSS-Fuzz variables; this
+  # runs it the way ClusterFuzzLite would, with the local clang and libFuzzer.
+  if(AP_FUZZ AND NOT AP_FUZZ_ENGINE AND _lines)
+    add_test(NAME fuzz.clusterfuzzlite_build_sh
+             COMMAND ${CMAKE_SOURCE_DIR}/ci/check-clusterfuzzlite ${CMAKE_BINARY_DIR}/cfl-check)
+    set_tests_properties(fuzz.clusterfuzzlite_build_sh PROPERTIES LABELS fuzz TIMEOUT 900)
+  endif()
+endfunction()
+cmake_language(DEFER DIRECTORY ${CMAKE_SOURCE_DIR} CALL _ap_write_lists)

@@ -20,7 +20,10 @@ if(AP_FUZZ)
     message(FATAL_ERROR "AP_FUZZ needs clang (libFuzzer)")
   endif()
   # Every object gets coverage edges for libFuzzer; only fuzz executables link the engine.
-  add_compile_options(-fsanitize=fuzzer-no-link)
+  # With an external engine (.clusterfuzzlite/build.sh) the instrumentation comes from $CXXFLAGS.
+  if(NOT AP_FUZZ_ENGINE)
+    add_compile_options(-fsanitize=fuzzer-no-link)
+  endif()
   # Fuzzing-only switch: lets targets that opt in skip the frame CRC check (see fuzz/README.md).
   add_compile_definitions(AP_FUZZING_BUILD=1)
 endif()
