@@ -1,0 +1,113 @@
+#include "core/storage/store.hpp"
+
+#include <algorithm>
+
+namespace ap::storage {
+
+ParameterStore::ParameterStore(SpiBus bus) noexcept : fram_(bus), current_(defaults()) {}
+
+void ParameterStore::read_copy(std::size_t copy, RecordBytes& buf, DecodeResult& out) const noexcept {
+  if (!fram_.read(kCopyBase[copy], buf)) {
+    out = DecodeResult{RecordStatus::Unreadable, ParamId::Crc, ParameterSet{}, 0};
+    return;
+  }
+  out = decode_record(buf);
+}
+
+BootReport ParameterStore::boot() noexcept {
+  std::array<DecodeResult, kCopyCount> copies{};
+  RecordBytes buf{};
+  for (std::size_t c = 0; c < kCopyCount; ++c) read_copy(c, buf, copies[c]);
+
+  BootReport report{BootSource::Defaults, {copies[0].status, copies[1].status}, 0};
+  std::size_t best = kCopyCount;
+  for (std::size_t c = 0; c < kCopyCount; ++c) {
+    if (copies[c].status != RecordStatus::Valid) continue;
+    // Equal sequences cannot come from our own saves; prefer A so the choice is deterministic.
+    if (best == kCopyCount || sequence_newer(copies[c].sequence, copies[best].sequence)) best = c;
+  }
+  fault_ = false;
+  if (best == kCopyCount) {
+    current_ = defaults();
+    sequence_ = 0;
+    active_ = kNoCopy;
+    return report;
+  }
+  current_ = copies[best].set;
+  sequence_ = copies[best].sequence;
+  active_ = static_cast<std::uint8_t>(best);
+  report.source = best == 0 ? BootSource::CopyA : BootSource::CopyB;
+  report.sequence = sequence_;
+  return report;
+}
+
+SaveResult ParameterStore::save(const ParameterSet& next) noexcept {
+  const Validation v = validate(next);
+  switch (v.error) {
+    case ValidationError::None: break;
+    case ValidationError::OutOfRange: return {StoreStatus::OutOfRange, 0, v.id};
+    case ValidationError::NotPowerOfTwo: return {StoreStatus::NotPowerOfTwo, 0, v.id};
+    case ValidationError::SpeedOrder:
+    case ValidationError::LimitOrder: return {StoreStatus::Inconsistent, 0, v.id};
+  }
+
+  // Never the copy holding the current set: that copy is what a torn write falls back to.
+  const std::size_t target = active_ == 0 ? 1U : 0U;
+  const std::uint32_t seq = sequence_ + 1U;
+  RecordBytes image{};
+  encode_record(next, seq, image);
+  RecordBytes readback{};
+
+  for (std::uint8_t attempt = 1; attempt <= kMaxSaveAttempts; ++attempt) {
+    const bool written = fram_.write(kCopyBase[target], image);
+    const bool read = written && fram_.read(kCopyBase[target], readback);
+    if (read && std::equal(image.begin(), image.end(), readback.begin())) {
+      current_ = next;
+      sequence_ = seq;
+      active_ = static_cast<std::uint8_t>(target);
+      fault_ = false;
+      return {StoreStatus::Ok, attempt, ParamId::MaxAcceleration};
+    }
+  }
+
+  // The copy may still hold our record intact if only the read path failed; spoil its CRC so
+  // unverified data can never be picked at the next boot (best effort: the bus may be dead).
+  std::array<std::uint8_t, 4> spoiled{};
+  put_le(spoiled, 0, 4, ~get_le(image, kCrcOffset, 4));
+  (void)fram_.write(static_cast<std::uint16_t>(kCopyBase[target] + kCrcOffset), spoiled);
+  fault_ = true;
+  return {StoreStatus::StorageFault, kMaxSaveAttempts, ParamId::MaxAcceleration};
+}
+
+SaveResult ParameterStore::set_parameter(std::uint8_t id, std::int64_t value) noexcept {
+  if (id >= kItemCount) return {StoreStatus::UnknownId, 0, ParamId::Crc};
+  const ParamId pid = static_cast<ParamId>(id);
+  if (entry(pid).role != Role::User) return {StoreStatus::NotSettable, 0, pid};
+  switch (check_item(pid, value)) {
+    case ValidationError::None: break;
+    case ValidationError::NotPowerOfTwo: return {StoreStatus::NotPowerOfTwo, 0, pid};
+    case ValidationError::OutOfRange:
+    case ValidationError::SpeedOrder:
+    case ValidationError::LimitOrder: return {StoreStatus::OutOfRange, 0, pid};
+  }
+  ParameterSet next = current_;
+  (void)set_field(next, pid, value);
+  return save(next);
+}
+
+SaveResult ParameterStore::begin_motion() noexcept {
+  if (!current_.step_counts_valid) return {StoreStatus::Ok, 0, ParamId::StepCountValid};
+  ParameterSet next = current_;
+  next.step_counts_valid = false;
+  return save(next);
+}
+
+SaveResult ParameterStore::record_shutdown(std::int32_t step_count_x, std::int32_t step_count_y) noexcept {
+  ParameterSet next = current_;
+  next.step_count_x = step_count_x;
+  next.step_count_y = step_count_y;
+  next.step_counts_valid = true;
+  return save(next);
+}
+
+}  // namespace ap::storage
