@@ -1,0 +1,11 @@
+#include "models/smt/modules.hpp"
+
+namespace ap::smt {
+
+ObligationList all_obligations() {
+  ObligationList out;
+  add_tmc2130_obligations(out);
+  return out;
+}
+
+}  // namespace ap::smt

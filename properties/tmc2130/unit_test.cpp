@@ -1,0 +1,297 @@
+// TMC2130 unit tests: the thesis's golden datagram, datasheet spot checks of the table,
+// driver behaviour at its edges, the current equation and the generated docs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/tmc2130/current.hpp"
+#include "core/tmc2130/driver.hpp"
+#include "harness.hpp"
+#include "models/tmc2130/text.hpp"
+
+namespace {
+
+using namespace tmc_test;
+using chip::Field;
+using chip::Reg;
+
+// Thesis §9.3 / Obr. 9-5: IHOLD_IRUN holds IHOLDDELAY=7, IRUN=0x17, IHOLD=3 (TMC-API's
+// default 0x00071703); setting I_RUN to 12 must send exactly 90 00 07 0C 03 and no read.
+TEST(tmc2130_golden, irun_12_keeps_ihold_with_exact_datagram) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  ASSERT_TRUE(b.driver.update(Reg::IHOLD_IRUN, {{Field::IHOLD_IRUN_IHOLD, 3},
+                                                {Field::IHOLD_IRUN_IRUN, 0x17},
+                                                {Field::IHOLD_IRUN_IHOLDDELAY, 7}}));
+  ASSERT_EQ(b.device.chip_register(Reg::IHOLD_IRUN), 0x00071703u);
+  b.clear();
+  ASSERT_TRUE(b.driver.set<Field::IHOLD_IRUN_IRUN>(12));
+  ASSERT_EQ(b.mosi.size(), 1u);
+  const chip::Datagram expected{0x90, 0x00, 0x07, 0x0C, 0x03};
+  EXPECT_EQ(b.mosi[0], expected);
+  EXPECT_EQ(b.device.chip_register(Reg::IHOLD_IRUN), 0x00070C03u);
+  EXPECT_EQ(b.driver.shadow(Reg::IHOLD_IRUN), 0x00070C03u);
+  EXPECT_EQ(b.reads(), 0u);
+}
+
+// Spot values typed in from the datasheet, independent of the table they check.
+TEST(tmc2130_regmap, datasheet_spot_checks) {
+  EXPECT_EQ(chip::address(Reg::IHOLD_IRUN), 0x10);
+  EXPECT_EQ(chip::info(Reg::IHOLD_IRUN).access, chip::Access::W);
+  EXPECT_EQ(chip::info(Field::IHOLD_IRUN_IHOLD).mask, 0x0000001Fu);
+  EXPECT_EQ(chip::info(Field::IHOLD_IRUN_IRUN).mask, 0x00001F00u);
+  EXPECT_EQ(chip::info(Field::IHOLD_IRUN_IRUN).shift, 8);
+  EXPECT_EQ(chip::info(Field::IHOLD_IRUN_IHOLDDELAY).mask, 0x000F0000u);
+  EXPECT_EQ(chip::info(Field::CHOPCONF_TOFF).mask, 0x0000000Fu);
+  EXPECT_EQ(chip::info(Field::CHOPCONF_MRES).mask, 0x0F000000u);
+  EXPECT_EQ(chip::info(Field::CHOPCONF_MRES).max, 8);
+  EXPECT_EQ(chip::info(Field::CHOPCONF_vsense).mask, 0x00020000u);
+  EXPECT_EQ(chip::info(Field::COOLCONF_sgt).mask, 0x007F0000u);
+  EXPECT_TRUE(chip::info(Field::COOLCONF_sgt).is_signed);
+  EXPECT_EQ(chip::info(Field::COOLCONF_sgt).min, -64);
+  EXPECT_EQ(chip::info(Field::DRV_STATUS_stst).mask, 0x80000000u);
+  EXPECT_EQ(chip::info(Field::DRV_STATUS_CS_ACTUAL).mask, 0x001F0000u);
+  EXPECT_EQ(chip::info(Field::MSLUT3_MSLUT3).mask, 0xFFFFFFFFu);
+  EXPECT_EQ(chip::address(Reg::CHOPCONF), 0x6C);
+  EXPECT_EQ(chip::info(Reg::CHOPCONF).access, chip::Access::RW);
+  EXPECT_EQ(chip::info(Reg::GSTAT).access, chip::Access::RC);
+  EXPECT_EQ(chip::info(Reg::DRV_STATUS).access, chip::Access::R);
+  EXPECT_EQ(chip::address(Reg::LOST_STEPS), 0x73);
+  EXPECT_EQ(chip::info(Reg::PWMCONF).reset, 0x00050480u);
+  EXPECT_EQ(chip::kRegisterCount, 31u);
+}
+
+TEST(tmc2130_regmap, dynamic_lookup_is_a_typed_miss) {
+  EXPECT_EQ(chip::find_register("IHOLD_IRUN"), Reg::IHOLD_IRUN);
+  EXPECT_EQ(chip::find_register(std::uint8_t{0x6C}), Reg::CHOPCONF);
+  EXPECT_FALSE(chip::find_register("IHOLD_RUN").has_value());
+  EXPECT_FALSE(chip::find_register(std::uint8_t{0x05}).has_value());
+  EXPECT_EQ(chip::find_field(Reg::CHOPCONF, "MRES"), Field::CHOPCONF_MRES);
+  EXPECT_FALSE(chip::find_field(Reg::CHOPCONF, "IRUN").has_value());
+}
+
+TEST(tmc2130_fields, out_of_range_is_rejected_not_masked) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  b.clear();
+  const auto before = b.driver.shadow(Reg::IHOLD_IRUN);
+  auto r = b.driver.set<Field::IHOLD_IRUN_IRUN>(32);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error(), chip::Error::ValueOutOfRange);
+  EXPECT_EQ(b.driver.set(Field::COOLCONF_sgt, -65).error(), chip::Error::ValueOutOfRange);
+  EXPECT_EQ(b.driver.set(Field::CHOPCONF_MRES, 9).error(), chip::Error::ValueOutOfRange);
+  EXPECT_EQ(b.driver.set(Field::XDIRECT_COIL_A, -256).error(), chip::Error::ValueOutOfRange);
+  EXPECT_EQ(b.driver.set(Field::IHOLD_IRUN_IHOLD, -1).error(), chip::Error::ValueOutOfRange);
+  EXPECT_TRUE(b.mosi.empty());
+  EXPECT_EQ(b.driver.shadow(Reg::IHOLD_IRUN), before);
+  EXPECT_FALSE(chip::field_set(0, Field::TPOWERDOWN_TPOWERDOWN, 256));
+}
+
+TEST(tmc2130_fields, batch_errors_leave_everything_unchanged) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  b.clear();
+  EXPECT_EQ(b.driver.update(Reg::IHOLD_IRUN, {{Field::IHOLD_IRUN_IRUN, 5}, {Field::CHOPCONF_TOFF, 3}}).error(),
+            chip::Error::FieldNotInRegister);
+  EXPECT_EQ(b.driver.update(Reg::IHOLD_IRUN, {{Field::IHOLD_IRUN_IRUN, 5}, {Field::IHOLD_IRUN_IRUN, 6}}).error(),
+            chip::Error::DuplicateField);
+  EXPECT_EQ(b.driver.update(Reg::IHOLD_IRUN, {{Field::IHOLD_IRUN_IRUN, 5}, {Field::IHOLD_IRUN_IHOLD, 99}}).error(),
+            chip::Error::ValueOutOfRange);
+  EXPECT_EQ(b.driver.set(Field::DRV_STATUS_stst, 1).error(), chip::Error::NotWritable);
+  EXPECT_EQ(b.driver.write(Reg::GSTAT, 1).error(), chip::Error::NotWritable);
+  EXPECT_TRUE(b.mosi.empty());
+  EXPECT_TRUE(b.chip_matches_shadows());
+}
+
+// TMCStepper #43: a getter of a write-only register must not touch the shadow.
+TEST(tmc2130_driver, write_only_getter_keeps_shadow_and_sends_nothing) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  ASSERT_TRUE(b.driver.set<Field::PWMCONF_PWM_GRAD>(77));
+  b.clear();
+  EXPECT_EQ(*b.driver.get<Field::PWMCONF_PWM_GRAD>(), 77);
+  EXPECT_EQ(*b.driver.get<Field::PWMCONF_PWM_AMPL>(), 128);  // reset value survives
+  EXPECT_TRUE(b.mosi.empty());
+  ASSERT_TRUE(b.driver.set<Field::PWMCONF_freewheel>(2));
+  EXPECT_EQ(chip::field_get(b.device.chip_register(Reg::PWMCONF), Field::PWMCONF_PWM_GRAD), 77);
+  EXPECT_EQ(chip::field_get(b.device.chip_register(Reg::PWMCONF), Field::PWMCONF_PWM_AMPL), 128);
+}
+
+TEST(tmc2130_driver, readable_register_rmw_reads_chip_and_verifies) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_TOFF>(3));
+  b.clear();
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_MRES>(4));
+  // read (2 transfers), write, read back (2 transfers)
+  ASSERT_EQ(b.mosi.size(), 5u);
+  EXPECT_EQ(b.mosi[2][0], 0x80 | 0x6C);
+  EXPECT_EQ(chip::data_of(b.mosi[2]), 0x04000003u);
+  EXPECT_EQ(*b.driver.get<Field::CHOPCONF_TOFF>(), 3);
+}
+
+TEST(tmc2130_driver, readback_mismatch_is_retried_then_reported) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  b.device.corrupt_writes(Reg::CHOPCONF, 0x1, chip::Driver::kMaxWriteAttempts - 1);
+  b.clear();
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_TOFF>(4));
+  EXPECT_EQ(b.device.writes_of(Reg::CHOPCONF), chip::Driver::kMaxWriteAttempts);
+  EXPECT_EQ(chip::field_get(b.device.chip_register(Reg::CHOPCONF), Field::CHOPCONF_TOFF), 4);
+
+  b.device.corrupt_writes(Reg::CHOPCONF, 0x1, chip::Driver::kMaxWriteAttempts);
+  b.clear();
+  const auto r = b.driver.set<Field::CHOPCONF_TOFF>(6);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error(), chip::Error::ReadbackMismatch);
+  EXPECT_EQ(b.device.writes_of(Reg::CHOPCONF), chip::Driver::kMaxWriteAttempts);
+}
+
+TEST(tmc2130_driver, bus_failure_leaves_shadow_unchanged) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  b.bus_fails = true;
+  const auto r = b.driver.set<Field::IHOLD_IRUN_IRUN>(20);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error(), chip::Error::BusFailure);
+  EXPECT_EQ(chip::field_get(b.driver.shadow(Reg::IHOLD_IRUN), Field::IHOLD_IRUN_IRUN), 0);
+}
+
+TEST(tmc2130_driver, status_byte_reaches_the_caller) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  b.device.set_input(Reg::DRV_STATUS, 0x81000000u);  // stst + stallGuard
+  b.device.set_input(Reg::GSTAT, 0x2u);               // drv_err
+  const auto r = b.driver.set<Field::TPOWERDOWN_TPOWERDOWN>(10);
+  ASSERT_TRUE(r);
+  EXPECT_EQ(*r, (chip::SpiStatus{false, true, true, true}));
+  EXPECT_EQ(b.driver.last_status(), (chip::SpiStatus{false, true, true, true}));
+}
+
+TEST(tmc2130_driver, reset_is_detected_and_every_shadow_rewritten) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  ASSERT_TRUE(b.driver.update(Reg::IHOLD_IRUN, {{Field::IHOLD_IRUN_IHOLD, 3}, {Field::IHOLD_IRUN_IRUN, 12}}));
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_MRES>(4));
+  ASSERT_TRUE(b.driver.set<Field::COOLCONF_sgt>(-7));
+  const unsigned before = b.driver.resets_recovered();
+  b.device.power_cycle();
+  ASSERT_FALSE(b.chip_matches_shadows());
+  ASSERT_TRUE(b.driver.set<Field::TPOWERDOWN_TPOWERDOWN>(20));  // reply carries reset_flag
+  EXPECT_EQ(b.driver.resets_recovered(), before + 1);
+  EXPECT_TRUE(b.chip_matches_shadows());
+  EXPECT_EQ(b.device.chip_register(Reg::GSTAT), 0u);
+
+  b.device.power_cycle();
+  ASSERT_TRUE(b.driver.check_reset());
+  EXPECT_EQ(b.driver.resets_recovered(), before + 2);
+  EXPECT_TRUE(b.chip_matches_shadows());
+}
+
+// A reset seen during the read of a readable register's RMW must not make the reset
+// contents the base of the write.
+TEST(tmc2130_driver, reset_during_readable_rmw_keeps_other_fields) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_TOFF>(5));
+  b.device.power_cycle();
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_MRES>(2));
+  EXPECT_EQ(chip::field_get(b.device.chip_register(Reg::CHOPCONF), Field::CHOPCONF_TOFF), 5);
+  EXPECT_EQ(chip::field_get(b.device.chip_register(Reg::CHOPCONF), Field::CHOPCONF_MRES), 2);
+}
+
+TEST(tmc2130_model, pipelined_read_and_gstat_clear_on_read) {
+  Device d;
+  const auto r1 = d.transfer(chip::encode({false, 0x01, 0}));
+  EXPECT_EQ(r1[0] & 1, 1);                // reset flag in the status byte
+  const auto r2 = d.transfer(chip::encode({false, 0x01, 0}));
+  EXPECT_EQ(chip::data_of(r2), 1u);      // GSTAT as latched by the first read
+  EXPECT_EQ(r2[0] & 1, 0);               // ... which cleared it
+  d.transfer(chip::encode({true, 0x10, 0x00070C03}));
+  d.transfer(chip::encode({false, 0x10, 0}));
+  EXPECT_EQ(chip::data_of(d.transfer(chip::encode({false, 0x10, 0}))), 0u);  // write-only
+  EXPECT_EQ(d.chip_register(Reg::IHOLD_IRUN), 0x00070C03u);
+  d.transfer(chip::encode({true, 0x6C, 0xFFFFFFFF}));
+  EXPECT_EQ(d.chip_register(Reg::CHOPCONF), chip::implemented_mask(Reg::CHOPCONF));
+}
+
+// Equation (7-1) against a double-precision oracle: the integer result is the true value
+// rounded to nearest (the irrational value is never within 1e-6 of a .5 here).
+TEST(tmc2130_current, matches_equation_7_1_for_every_cs) {
+  namespace cur = chip::current;
+  EXPECT_EQ(*cur::current_ma(12, false, cur::kThesisRsenseMohm), 707u);
+  EXPECT_EQ(*cur::current_ma(31, false, cur::kThesisRsenseMohm), 1741u);
+  EXPECT_EQ(*cur::current_ma(12, true, cur::kThesisRsenseMohm), 398u);
+  for (unsigned r : {1u, 47u, 75u, 100u, 110u, 150u, 220u, 330u, 1000u}) {
+    for (bool vs : {false, true}) {
+      for (unsigned cs = 0; cs <= 31; ++cs) {
+        const double exact = (cs + 1.0) / 32.0 * (vs ? 180.0 : 320.0) / ((r + 20.0) / 1000.0) / std::sqrt(2.0);
+        const auto got = cur::current_ma(static_cast<std::uint8_t>(cs), vs, r);
+        ASSERT_TRUE(got);
+        EXPECT_EQ(*got, static_cast<unsigned>(std::floor(exact + 0.5))) << "cs " << cs << " r " << r;
+      }
+    }
+  }
+  EXPECT_EQ(cur::current_ma(32, false, 110).error(), chip::Error::CurrentOutOfRange);
+  EXPECT_EQ(cur::current_ma(1, false, 0).error(), chip::Error::CurrentOutOfRange);
+}
+
+TEST(tmc2130_current, cs_for_current_is_largest_not_exceeding) {
+  namespace cur = chip::current;
+  EXPECT_EQ(*cur::cs_for_current(707, false, 110), 11);  // CS 12 is 707.107 mA > 707
+  EXPECT_EQ(*cur::cs_for_current(708, false, 110), 12);
+  EXPECT_EQ(*cur::cs_for_current(5000, false, 110), 31);
+  EXPECT_EQ(cur::cs_for_current(10, false, 110).error(), chip::Error::CurrentOutOfRange);
+  EXPECT_EQ(cur::cs_for_current(20000, false, 110).error(), chip::Error::CurrentOutOfRange);
+  for (unsigned r : {47u, 110u, 220u}) {
+    for (bool vs : {false, true}) {
+      for (unsigned ma = 0; ma <= 3000; ma += 7) {
+        int best = -1;
+        for (int cs = 0; cs <= 31; ++cs) {
+          const double exact = (cs + 1.0) / 32.0 * (vs ? 180.0 : 320.0) / ((r + 20.0) / 1000.0) / std::sqrt(2.0);
+          if (exact <= ma) best = cs;
+        }
+        const auto got = cur::cs_for_current(ma, vs, r);
+        if (best < 0) {
+          EXPECT_FALSE(got) << ma;
+        } else {
+          ASSERT_TRUE(got) << ma;
+          EXPECT_EQ(int{*got}, best) << "ma " << ma << " r " << r;
+        }
+      }
+    }
+  }
+}
+
+TEST(tmc2130_text, decode_golden_datagram) {
+  const auto d = ap::model::tmc2130::parse_datagram({"90", "00", "07", "0C", "03"});
+  ASSERT_TRUE(d);
+  EXPECT_EQ(ap::model::tmc2130::decode_datagram(*d, false),
+            "write IHOLD_IRUN (0x10) data 0x00070C03\n  IHOLD=3 IRUN=12 IHOLDDELAY=7\n");
+  EXPECT_EQ(ap::model::tmc2130::parse_datagram({"0x90,0x00,0x07,0x0C,0x03"}), d);
+  EXPECT_EQ(ap::model::tmc2130::parse_datagram({"9000070C03"}), d);
+  EXPECT_FALSE(ap::model::tmc2130::parse_datagram({"90", "00", "07", "0C"}));
+  EXPECT_FALSE(ap::model::tmc2130::parse_datagram({"90", "00", "07", "0C", "zz"}));
+}
+
+// docs/tmc2130.md carries the map between two markers; it must equal the table.
+TEST(tmc2130_docs, register_map_in_docs_matches_table) {
+  std::ifstream in(std::string(AP_SOURCE_DIR) + "/docs/tmc2130.md");
+  ASSERT_TRUE(in) << "docs/tmc2130.md missing";
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  const std::string begin = "<!-- regmap:begin (generated: axisproof regs --format md) -->\n";
+  const std::string end = "<!-- regmap:end -->";
+  const auto b = doc.find(begin);
+  const auto e = doc.find(end);
+  ASSERT_NE(b, std::string::npos);
+  ASSERT_NE(e, std::string::npos);
+  EXPECT_EQ(doc.substr(b + begin.size(), e - b - begin.size()),
+            ap::model::tmc2130::register_map(ap::model::tmc2130::MapFormat::Markdown));
+}
+
+}  // namespace
