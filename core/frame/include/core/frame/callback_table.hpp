@@ -1,0 +1,56 @@
+#pragma once
+// The callback table (the thesis's CallbackArray): handler function pointers indexed by
+// command ID. Unlike the thesis, every lookup is bounds-checked and an empty slot is a
+// typed rejection, never a call through a null pointer.
+//
+// Who installs what: the board supervisor (core/board) owns one table and installs one
+// handler per command it implements, then calls dispatch() with itself as `ctx` for every
+// accepted frame. Handlers are plain functions, not std::function, so the table is a
+// fixed array in .bss with no heap.
+//
+// Dispatch contract: the frame is validated again (a frame built by hand may be out of
+// range), then both handlers are looked up before either runs, so a frame is either
+// executed completely (X handler once, then Y handler once) or not at all.
+// Unit-scope commands (codec::Scope::Unit) reach the handler once per axis part that
+// carries them; such handlers must be idempotent.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "codec/commands.hpp"
+#include "core/frame/frames.hpp"
+
+namespace ap::frame {
+
+enum class HandlerStatus : std::uint8_t {
+  Done,     // command taken
+  Refused,  // valid, but not allowed now (blocked, asleep, ...); the echo status says why
+};
+
+using Handler = HandlerStatus (*)(void* ctx, Axis axis, std::int32_t data);
+
+struct DispatchResult {
+  Rejection rejection;  // not ok(): no handler ran
+  HandlerStatus x = HandlerStatus::Done;
+  HandlerStatus y = HandlerStatus::Done;
+};
+
+class CallbackTable {
+ public:
+  static constexpr std::size_t kSize = codec::kCommandCount;
+
+  // False (and nothing stored) when id is outside the table.
+  bool install(std::uint32_t id, Handler handler);
+  bool install(codec::CommandId id, Handler handler) { return install(static_cast<std::uint32_t>(id), handler); }
+  // nullptr when id is outside the table or nothing is installed.
+  Handler find(std::uint32_t id) const;
+
+  DispatchResult dispatch(const CommandFrame& frame, void* ctx) const;
+
+ private:
+  static bool in_range(std::uint32_t id);
+
+  std::array<Handler, kSize> handlers_{};
+};
+
+}  // namespace ap::frame

@@ -1,0 +1,67 @@
+#pragma once
+// Decoded frames. Values here are always in their table ranges once parsed; the formatter
+// re-checks them because callers may build frames by hand.
+#include <array>
+#include <cstdint>
+
+#include "codec/commands.hpp"
+#include "codec/errors.hpp"
+#include "codec/layout.hpp"
+#include "codec/statuses.hpp"
+#include "codec/subscribers.hpp"
+
+namespace ap::frame {
+
+enum class Axis : std::uint8_t { X = 0, Y = 1 };
+
+struct AxisCommand {
+  codec::CommandId id = codec::CommandId::Nop;
+  std::int32_t data = 0;
+  friend constexpr bool operator==(const AxisCommand&, const AxisCommand&) = default;
+};
+
+struct SubscriberSlot {
+  codec::SubscriberId id = codec::SubscriberId::None;
+  std::uint8_t arg = 0;
+  friend constexpr bool operator==(const SubscriberSlot&, const SubscriberSlot&) = default;
+};
+
+using SubscriberSlots = std::array<SubscriberSlot, codec::kSubscriberSlots>;
+
+struct CommandFrame {
+  std::uint16_t seq = 0;  // 0..999
+  AxisCommand x;
+  AxisCommand y;
+  SubscriberSlots subs{};
+  friend constexpr bool operator==(const CommandFrame&, const CommandFrame&) = default;
+};
+
+struct AxisEcho {
+  codec::EchoStatus status = codec::EchoStatus::Idle;
+  std::int32_t data = 0;
+  friend constexpr bool operator==(const AxisEcho&, const AxisEcho&) = default;
+};
+
+struct SubscriberPacket {
+  SubscriberSlot slot;
+  std::int32_t data = 0;
+  friend constexpr bool operator==(const SubscriberPacket&, const SubscriberPacket&) = default;
+};
+
+struct EchoFrame {
+  std::uint16_t seq = 0;
+  AxisEcho x;
+  AxisEcho y;
+  std::array<SubscriberPacket, codec::kSubscriberSlots> subs{};
+  friend constexpr bool operator==(const EchoFrame&, const EchoFrame&) = default;
+};
+
+// A typed error and the offset of the first offending byte within the frame.
+struct Rejection {
+  codec::FrameError error = codec::FrameError::None;
+  std::uint16_t offset = 0;
+  constexpr bool ok() const { return error == codec::FrameError::None; }
+  friend constexpr bool operator==(const Rejection&, const Rejection&) = default;
+};
+
+}  // namespace ap::frame
