@@ -1,0 +1,92 @@
+#include "sim/trace.hpp"
+
+#include <filesystem>
+#include <sstream>
+
+namespace ap::sim {
+
+TraceWriter::TraceWriter(const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(p.parent_path(), ec);
+  }
+  out_.open(path, std::ios::trunc);
+  if (out_) {
+    out_ << kTraceHeader << '\n';
+  }
+}
+
+TraceRow make_row(int64_t t_us, char axis, const ap::axis::State& s, const ap::axis::Input& in,
+                  const ap::axis::Output& out) {
+  TraceRow r;
+  r.t_us = t_us;
+  r.axis = axis;
+  r.state = ap::axis::phase_name(s.phase);
+  r.mode = ap::axis::mode_name(s.mode);
+  r.pos = s.pos;
+  r.target = s.target;
+  // The speed STEP pulses went out at during this tick (0 on the start tick: DIR setup).
+  r.speed = out.step_speed / ap::axis::kSpeedScale;
+  r.dir = s.dir;
+  r.endstop_min = in.endstop_min != 0 ? 1 : 0;
+  r.endstop_max = in.endstop_max != 0 ? 1 : 0;
+  r.blocked = in.blocked != 0 ? 1 : 0;
+  r.steps = out.steps;
+  r.edge = ap::axis::edge_letter(out.edge);
+  r.error = static_cast<int>(out.error);
+  return r;
+}
+
+void TraceWriter::row(const TraceRow& r) {
+  out_ << r.t_us << ',' << r.axis << ',' << r.state << ',' << r.mode << ',' << r.pos << ',' << r.target << ','
+       << r.speed << ',' << r.dir << ',' << r.endstop_min << ',' << r.endstop_max << ',' << r.blocked << ','
+       << r.steps << ',' << r.edge << ',' << r.error << '\n';
+}
+
+void TraceWriter::row(int64_t t_us, char axis, const ap::axis::State& s, const ap::axis::Input& in,
+                      const ap::axis::Output& out) {
+  row(make_row(t_us, axis, s, in, out));
+}
+
+bool read_trace(const std::string& path, std::vector<TraceRow>& rows) {
+  std::ifstream in(path);
+  std::string line;
+  if (!std::getline(in, line) || line != kTraceHeader) {
+    return false;
+  }
+  while (std::getline(in, line)) {
+    std::stringstream ss(line);
+    std::vector<std::string> f;
+    std::string cell;
+    while (std::getline(ss, cell, ',')) {
+      f.push_back(cell);
+    }
+    if (f.size() != 14 || f[1].size() != 1 || f[12].size() != 1) {
+      return false;
+    }
+    try {
+      TraceRow r;
+      r.t_us = std::stoll(f[0]);
+      r.axis = f[1][0];
+      r.state = f[2];
+      r.mode = f[3];
+      r.pos = std::stoll(f[4]);
+      r.target = std::stoll(f[5]);
+      r.speed = std::stoll(f[6]);
+      r.dir = std::stoi(f[7]);
+      r.endstop_min = std::stoi(f[8]);
+      r.endstop_max = std::stoi(f[9]);
+      r.blocked = std::stoi(f[10]);
+      r.steps = std::stoll(f[11]);
+      r.edge = f[12][0];
+      r.error = std::stoi(f[13]);
+      rows.push_back(r);
+    } catch (...) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace ap::sim
