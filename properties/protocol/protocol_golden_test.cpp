@@ -139,7 +139,9 @@ TEST(ProtocolGolden, StreamsFrameAsExpected) {
       const auto& want = v["events"][i];
       EXPECT_EQ(events[i].stream_offset, want["offset"].get<std::uint32_t>()) << i;
       EXPECT_EQ(c::error_key(events[i].rejection.error), want["error"].get<std::string>()) << i;
-      if (want.contains("at")) EXPECT_EQ(events[i].rejection.offset, want["at"].get<int>()) << i;
+      if (want.contains("at")) {
+        EXPECT_EQ(events[i].rejection.offset, want["at"].get<int>()) << i;
+      }
     }
     EXPECT_EQ(framer.counters().rejected_bytes, v["rejected_bytes"].get<std::uint32_t>());
   }

@@ -13,7 +13,12 @@ namespace c = ap::codec;
 
 namespace {
 std::string range(c::Range r) { return std::to_string(r.min) + " .. " + std::to_string(r.max); }
-std::string id2(std::size_t id) { return (id < 10 ? "0" : "") + std::to_string(id); }
+std::string id2(std::size_t id) {
+  std::string s(2, '0');  // built in place: gcc 12 -O3 warns (-Wrestrict) on "0" + to_string
+  s[0] = static_cast<char>('0' + id / 10 % 10);
+  s[1] = static_cast<char>('0' + id % 10);
+  return s;
+}
 }  // namespace
 
 std::string command_table_md() {

@@ -1,0 +1,106 @@
+// Dispatch fuzz target: bytes -> CommandLink (framer, parser, callback table, echo builder).
+// The first byte chooses which command IDs have no handler. Oracles per frame event:
+//   - accepted and both handlers installed: exactly two calls, X then Y, with the frame's data;
+//   - anything else: no call, last_seq and the watchdog untouched, a FRAME_REJECTED echo;
+//   - every echo parses.
+// Also hand-made frames straight from the bytes: dispatch rejects or calls exactly twice.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <span>
+
+#include "core/frame/callback_table.hpp"
+#include "core/frame/command_link.hpp"
+#include "core/frame/echo_codec.hpp"
+#include "crc_repair.hpp"
+
+namespace {
+
+constexpr std::size_t kMaxInput = 600;
+
+namespace f = ap::frame;
+using ap::fuzz::require;
+
+struct Calls {
+  int count = 0;
+  f::Axis axis[2]{};
+  std::int32_t data[2]{};
+};
+
+f::HandlerStatus handler(void* ctx, f::Axis axis, std::int32_t data) {
+  auto* c = static_cast<Calls*>(ctx);
+  if (c->count < 2) {
+    c->axis[c->count] = axis;
+    c->data[c->count] = data;
+  }
+  ++c->count;
+  return (data & 1) != 0 ? f::HandlerStatus::Refused : f::HandlerStatus::Done;
+}
+
+f::AxisEcho axis_state(void*, f::Axis a) { return {ap::codec::EchoStatus::Idle, a == f::Axis::X ? 1 : 2}; }
+std::int32_t sub_value(void*, f::SubscriberSlot s) { return static_cast<std::int32_t>(s.arg) * 1000003; }
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  // A dozen frames is plenty to reach every framer state; longer inputs only slow the run.
+  if (size == 0 || size > kMaxInput) return 0;
+  const std::uint8_t missing = data[0];
+  f::CallbackTable table;
+  for (std::uint32_t id = 0; id < f::CallbackTable::kSize; ++id) {
+    if (id % 8 != missing % 8 || (missing & 0x80U) == 0) require(table.install(id, &handler));
+  }
+  require(!table.install(f::CallbackTable::kSize, &handler));
+  Calls calls;
+  f::CommandLink link(table, &calls, {nullptr, &axis_state, &sub_value});
+  const std::span<const std::uint8_t> in(data + 1, size - 1);
+  f::CommandFramer shadow;  // a second framer predicts what the link's framer sees
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    const auto event = shadow.push(in[i]);
+    const auto seq_before = link.last_seq();
+    link.tick();
+    const auto ticks_before = link.ticks_since_accepted();
+    calls = {};
+    int echoes = 0;
+    f::EchoFrame echo{};
+    link.receive(in.subspan(i, 1), [&](std::span<const std::uint8_t, ap::codec::kEchoLength> b) {
+      require(f::parse_echo(b, echo).ok());
+      ++echoes;
+    });
+    if (!event) {
+      require(echoes == 0 && calls.count == 0);
+      continue;
+    }
+    require(echoes == 1);
+    const bool handled = event->rejection.ok() && table.find(static_cast<std::uint32_t>(event->frame.x.id)) != nullptr &&
+                         table.find(static_cast<std::uint32_t>(event->frame.y.id)) != nullptr;
+    if (handled) {
+      require(calls.count == 2 && calls.axis[0] == f::Axis::X && calls.axis[1] == f::Axis::Y);
+      require(calls.data[0] == event->frame.x.data && calls.data[1] == event->frame.y.data);
+      require(link.last_seq() == event->frame.seq && link.ticks_since_accepted() == 0);
+      require(echo.seq == event->frame.seq && echo.x.data == 1 && echo.y.data == 2);
+    } else {
+      require(calls.count == 0);
+      require(link.last_seq() == seq_before && link.ticks_since_accepted() == ticks_before);
+      require(echo.x.status == ap::codec::EchoStatus::FrameRejected && echo.seq == seq_before);
+    }
+  }
+  // Hand-made frame: raw IDs and data, no parser in front.
+  if (size >= 11) {
+    f::CommandFrame raw;
+    raw.x.id = static_cast<ap::codec::CommandId>(data[1]);
+    raw.y.id = static_cast<ap::codec::CommandId>(data[2]);
+    std::int32_t dx = 0;
+    std::int32_t dy = 0;
+    std::memcpy(&dx, data + 3, sizeof dx);
+    std::memcpy(&dy, data + 7, sizeof dy);
+    raw.x.data = dx;
+    raw.y.data = dy;
+    calls = {};
+    const auto r = table.dispatch(raw, &calls);
+    require(r.rejection.ok() ? calls.count == 2 : calls.count == 0);
+    require(!r.rejection.ok() || f::validate(raw).ok());
+  }
+  return 0;
+}
