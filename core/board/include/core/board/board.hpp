@@ -1,0 +1,240 @@
+// The board core: the main state machine of seed-000.md §4.7 (blocked / user control /
+// parameter setting) tying the frame receive path, the callback table, both axes, the
+// parameter store and the two TMC2130 drivers together behind a narrow hardware interface.
+//
+// It is pure and deterministic: every input arrives through Hardware::sample() or
+// uart_rx(), every output leaves through Hardware's function pointers, and time is the
+// number of tick() calls (one per 1 ms control tick). The firmware, the simulated board,
+// the tests and the fuzzers all drive this same class. docs/board.md has the cycle order
+// and the decisions on the seed's gaps (G14-G16, G23, G24).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "codec/layout.hpp"
+#include "core/axis/axis.hpp"
+#include "core/axis/position.hpp"
+#include "core/axis/units.hpp"
+#include "core/axis/watchdog.hpp"
+#include "core/frame/callback_table.hpp"
+#include "core/frame/frames.hpp"
+#include "core/frame/stream_framer.hpp"
+#include "core/storage/store.hpp"
+#include "core/tmc2130/driver.hpp"
+
+namespace ap::board {
+
+using frame::Axis;
+inline constexpr std::size_t kAxes = 2;
+
+// Everything the board reads at the start of a cycle. Levels, not edges: the board keeps
+// its own memory (endstop latches live in the axis state, battery hysteresis here).
+struct Inputs {
+  std::array<std::uint8_t, kAxes> endstop_min{};  // 1 = Hall switch active
+  std::array<std::uint8_t, kAxes> endstop_max{};
+  bool usb = false;      // the manually set USB flag of the prototype (G23)
+  bool charger = false;  // charger connected
+  std::uint16_t battery_mv = 4000;
+  std::int32_t charge_ma = 0;
+  std::int32_t temperature_mc = 25000;
+  std::int32_t rotation_mdeg = 0;
+  bool ble_status1 = false;  // STATUS1_IND, STATUS2_IND (Tab. 7-2): (0,1) = Data Session open
+  bool ble_status2 = true;
+  std::array<axis::EncoderReading, kAxes> encoder{};
+};
+
+// What drives one axis's STEP/DIR/ENA pins for the coming tick: `steps` rising STEP edges at
+// `step_hz` (the timer setting is axis::step_timer(step_hz)), all with DIR = `dir`.
+struct MotorOutput {
+  bool enable = true;
+  std::int8_t dir = 1;
+  std::int32_t steps = 0;
+  std::uint32_t step_hz = 0;
+};
+
+// The hardware boundary. Plain function pointers with one context, so the core needs no
+// virtual interface; any pointer may be null (that output is then simply not driven).
+struct Hardware {
+  void* ctx = nullptr;
+  std::array<core::tmc2130::SpiPort, kAxes> tmc{};  // one chip select per driver
+  storage::SpiBus fram{nullptr, nullptr};
+  void (*sample)(void* ctx, Inputs& in) = nullptr;
+  void (*motor)(void* ctx, Axis axis, const MotorOutput& out) = nullptr;
+  void (*uart_tx)(void* ctx, std::span<const std::uint8_t> bytes) = nullptr;
+};
+
+enum class MainState : std::uint8_t { Blocked, UserControl, ParamSet };
+enum class Block : std::uint8_t { None, Usb, Charger, Battery };
+
+// Why the last completed motion of an axis ended; shown in the echo while it stands still.
+enum class AxisEvent : std::uint8_t { None, Reached, StoppedByUser, Endstop, LinkLost, HomeFailed };
+
+// Counters wrap at 2^32 (13 years of 10 frames/s).
+struct BoardCounters {
+  frame::FramerCounters framer{};
+  std::uint32_t dispatched_frames = 0;  // accepted, session open, not blocked: handlers ran
+  std::uint32_t gated_frames = 0;       // accepted while the BLE session was not open: dropped
+  std::uint32_t blocked_frames = 0;     // accepted while blocked: answered, not dispatched
+  std::uint32_t unhandled_frames = 0;
+  std::uint32_t refused_parts = 0;
+  std::uint32_t watchdog_expiries = 0;
+  std::uint32_t rx_overruns = 0;  // bytes dropped because the receive ring was full
+  std::uint32_t echoes_sent = 0;
+  friend constexpr bool operator==(const BoardCounters&, const BoardCounters&) = default;
+};
+
+// Fault codes shown as the data of a FAULT echo: source * 1000 + detail.
+inline constexpr std::int32_t kFaultStorage = 1000;     // + storage::StoreStatus
+inline constexpr std::int32_t kFaultDriverX = 2000;     // + tmc2130::Error
+inline constexpr std::int32_t kFaultDriverY = 3000;     // + tmc2130::Error
+inline constexpr std::int32_t kFaultBadParams = 4000;   // loaded set does not convert: defaults used
+
+inline constexpr std::uint16_t kBatteryHysteresisMv = 100;  // G23: unblock at threshold + 100 mV
+inline constexpr std::size_t kRxCapacity = 256;             // > 6 command frames
+inline constexpr std::size_t kMaxEchoesPerCycle = 4;
+inline constexpr std::uint32_t kDriverCheckPeriod = 100;    // ticks between GSTAT checks per driver
+
+struct BootResult {
+  storage::BootReport store;
+  std::array<axis::StartPosition, kAxes> start{};
+  bool drivers_ok = false;
+};
+
+enum class ShutdownResult : std::uint8_t { Ok, Moving, StorageFault };
+
+// Axis parameters in core units derived from a stored set (µm -> microsteps).
+struct Derived {
+  axis::Mechanics mech{};
+  std::array<axis::Config, kAxes> cfg{};
+  bool ok = false;
+};
+Derived derive(const storage::ParameterSet& p);
+
+class Board {
+ public:
+  explicit Board(const Hardware& hw);
+  Board(const Board&) = delete;
+  Board& operator=(const Board&) = delete;
+
+  // Power-up (§4.6): load the parameters (newest valid A/B copy), initialise both drivers
+  // with the stored currents and microsteps, seed each step counter from its encoder or the
+  // saved counter. Call once before the first tick().
+  BootResult boot();
+
+  // The UART receive interrupt: bytes are only stored; the framer runs in tick().
+  void uart_rx(std::span<const std::uint8_t> bytes);
+
+  // One control cycle (1 ms). Order: sample inputs; begin-of-cycle checks (block causes,
+  // BLE status); frames from the receive ring through framer -> gate -> callback table;
+  // link watchdog; both axes stepped and their outputs driven; periodic driver check;
+  // the echoes of this cycle built and sent last, after the commands took effect.
+  void tick();
+
+  // Orderly shutdown: writes both step counters with the validity flag (only at rest).
+  ShutdownResult shutdown();
+
+  // Observers (tests, fuzz oracles, the simulated board's trace).
+  MainState main_state() const { return main_state_; }
+  Block block() const { return block_; }
+  bool sleeping() const { return sleeping_; }
+  bool session_open() const { return session_open_; }
+  bool link_alive() const { return axis::link_alive(watchdog_); }
+  const axis::State& axis_state(Axis a) const { return axes_[idx(a)]; }
+  const axis::Config& axis_config(Axis a) const { return derived_.cfg[idx(a)]; }
+  const axis::Mechanics& mechanics() const { return derived_.mech; }
+  AxisEvent axis_event(Axis a) const { return event_[idx(a)]; }
+  const MotorOutput& motor_output(Axis a) const { return motor_[idx(a)]; }
+  const Inputs& inputs() const { return in_; }
+  const storage::ParameterStore& store() const { return store_; }
+  std::int32_t fault_code() const { return fault_; }
+  BoardCounters counters() const;
+  std::uint32_t ticks() const { return ticks_; }
+  std::uint16_t last_seq() const { return last_seq_; }
+  frame::AxisEcho axis_echo(Axis a) const;
+  std::int32_t position_um(Axis a) const;
+
+ private:
+  static constexpr std::size_t idx(Axis a) { return static_cast<std::size_t>(a); }
+  static constexpr std::uint8_t kNoRefusal = 0xFF;
+
+  struct PendingEcho {
+    bool rejected = false;
+    frame::Rejection rejection{};
+    std::uint16_t seq = 0;
+    frame::SubscriberSlots subs{};
+  };
+
+  void begin_of_cycle();
+  void receive();
+  void handle(const frame::CommandFramer::Event& e);
+  void step_axes();
+  void check_drivers();
+  void send_echoes();
+
+  bool motion_permitted(Axis a, codec::CommandId id);
+  frame::HandlerStatus set_axis_command(Axis a, codec::CommandId id, const axis::Command& c);
+  frame::HandlerStatus set_parameter(Axis a, codec::CommandId id, storage::ParamId pid, std::int32_t value);
+  bool apply_currents();
+  bool apply_microsteps();
+  void driver_fault(std::size_t i, core::tmc2130::Error e);
+  frame::HandlerStatus refuse(Axis a, codec::CommandId id);
+  std::int32_t subscriber(frame::SubscriberSlot slot);
+
+  static frame::HandlerStatus on_nop(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_stop(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_jog(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_goto(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_move(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_home(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_param(void*, Axis, std::int32_t, codec::CommandId);
+  template <codec::CommandId Id>
+  static frame::HandlerStatus on_param_id(void* c, Axis a, std::int32_t d) {
+    return on_param(c, a, d, Id);
+  }
+  static frame::HandlerStatus on_periph_off(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_periph_on(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_save(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_clear(void*, Axis, std::int32_t);
+  static frame::AxisEcho echo_axis(void* ctx, Axis a);
+  static std::int32_t echo_subscriber(void* ctx, frame::SubscriberSlot slot);
+
+  Hardware hw_;
+  storage::ParameterStore store_;
+  std::array<core::tmc2130::Driver, kAxes> drivers_;
+  frame::CallbackTable table_{};
+  frame::CommandFramer framer_{};
+  Derived derived_{};
+
+  std::array<std::uint8_t, kRxCapacity> rx_{};
+  std::size_t rx_head_ = 0;  // next byte to read
+  std::size_t rx_count_ = 0;
+
+  Inputs in_{};
+  MainState main_state_ = MainState::UserControl;
+  Block block_ = Block::None;
+  bool battery_low_ = false;
+  bool session_open_ = false;
+  bool sleeping_ = false;
+  bool param_cycle_ = false;
+  std::int32_t fault_ = 0;
+  axis::LinkWatchdog watchdog_{};
+  bool frame_this_cycle_ = false;
+
+  std::array<axis::State, kAxes> axes_{};
+  std::array<axis::Command, kAxes> pending_{};
+  std::array<codec::CommandId, kAxes> pending_id_{};
+  std::array<std::uint8_t, kAxes> refused_{kNoRefusal, kNoRefusal};
+  std::array<AxisEvent, kAxes> event_{};
+  std::array<MotorOutput, kAxes> motor_{};
+
+  std::array<PendingEcho, kMaxEchoesPerCycle> echoes_{};
+  std::size_t echo_count_ = 0;
+  std::uint16_t last_seq_ = 0;
+  std::uint32_t ticks_ = 0;
+  BoardCounters counters_{};
+};
+
+}  // namespace ap::board

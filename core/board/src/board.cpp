@@ -1,0 +1,580 @@
+#include "core/board/board.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <limits>
+
+#include "codec/commands.hpp"
+#include "codec/statuses.hpp"
+#include "codec/subscribers.hpp"
+#include "core/frame/echo_builder.hpp"
+#include "core/frame/echo_codec.hpp"
+#include "core/tmc2130/fields.hpp"
+
+namespace ap::board {
+
+namespace c = ap::codec;
+namespace st = ap::storage;
+namespace tmc = ap::core::tmc2130;
+using frame::HandlerStatus;
+
+namespace {
+
+constexpr std::int32_t clamp32(std::int64_t v) {
+  return static_cast<std::int32_t>(std::clamp<std::int64_t>(v, std::numeric_limits<std::int32_t>::min(),
+                                                             std::numeric_limits<std::int32_t>::max()));
+}
+
+constexpr std::int32_t wrap_million(std::uint32_t v) { return static_cast<std::int32_t>(v % 1'000'000U); }
+
+// MRES encodes 256 >> MRES microsteps; storage only admits powers of two in [1, 256].
+constexpr std::int64_t mres_of(std::uint16_t microsteps) {
+  return 8 - std::countr_zero(static_cast<unsigned>(microsteps));
+}
+
+bool moving(const axis::State& s) { return s.phase != axis::Phase::Stop; }
+
+}  // namespace
+
+Derived derive(const st::ParameterSet& p) {
+  Derived d;
+  if (!st::validate(p).ok()) return d;
+  d.mech = axis::Mechanics{static_cast<std::int32_t>(p.lead_pitch_um), p.steps_per_rev, p.microsteps};
+  if (!axis::mechanics_valid(d.mech)) return d;
+  const auto start = axis::speed_to_usteps(static_cast<std::int32_t>(p.start_speed_um_s), d.mech);
+  const auto slow = axis::speed_to_usteps(static_cast<std::int32_t>(p.slow_speed_um_s), d.mech);
+  const auto fast = axis::speed_to_usteps(static_cast<std::int32_t>(p.fast_speed_um_s), d.mech);
+  const auto accel = axis::accel_to_usteps(static_cast<std::int32_t>(p.max_acceleration_um_s2), d.mech);
+  if (start.error != axis::Error::None || slow.error != axis::Error::None || fast.error != axis::Error::None ||
+      accel.error != axis::Error::None) {
+    return d;
+  }
+  const std::array<std::array<std::int32_t, 3>, kAxes> per_axis{{
+      {p.soft_min_x_um, p.soft_max_x_um, p.home_offset_x_um},
+      {p.soft_min_y_um, p.soft_max_y_um, p.home_offset_y_um},
+  }};
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    const auto lim = axis::limits_to_usteps(per_axis[i][0], per_axis[i][1], d.mech);
+    const auto home = axis::um_to_usteps(per_axis[i][2], d.mech, axis::Round::Nearest);
+    if (lim.error != axis::Error::None || home.error != axis::Error::None) return d;
+    axis::Config& cfg = d.cfg[i];
+    // A start speed of 0 µm/s (allowed by the map) or one that rounds to 0 means "start at
+    // the lowest speed the step function knows", 1 ustep/s.
+    cfg.v_start = std::max(start.value, 1);
+    cfg.v_slow = slow.value;
+    cfg.v_fast = fast.value;
+    cfg.accel = accel.value;
+    cfg.soft_min = lim.min;
+    cfg.soft_max = lim.max;
+    // Homing gives up after twice the travel range: from anywhere inside it the min endstop
+    // must have been seen by then. span <= 2e9 so the product fits int64.
+    const std::int64_t span = static_cast<std::int64_t>(lim.max) - lim.min;
+    cfg.home_travel = static_cast<std::int32_t>(std::clamp<std::int64_t>(2 * span, 1, axis::kPosMax));
+    cfg.home_position = home.value;
+    if (!axis::config_valid(cfg)) return d;
+  }
+  d.ok = true;
+  return d;
+}
+
+Board::Board(const Hardware& hw)
+    : hw_(hw), store_(hw.fram), drivers_{tmc::Driver(hw.tmc[0]), tmc::Driver(hw.tmc[1])} {
+  table_.install(c::CommandId::Nop, &Board::on_nop);
+  table_.install(c::CommandId::Stop, &Board::on_stop);
+  table_.install(c::CommandId::Jog, &Board::on_jog);
+  table_.install(c::CommandId::Goto, &Board::on_goto);
+  table_.install(c::CommandId::Move, &Board::on_move);
+  table_.install(c::CommandId::Home, &Board::on_home);
+  table_.install(c::CommandId::SetFastSpeed, &Board::on_param_id<c::CommandId::SetFastSpeed>);
+  table_.install(c::CommandId::SetSlowSpeed, &Board::on_param_id<c::CommandId::SetSlowSpeed>);
+  table_.install(c::CommandId::SetAccel, &Board::on_param_id<c::CommandId::SetAccel>);
+  table_.install(c::CommandId::SetStartSpeed, &Board::on_param_id<c::CommandId::SetStartSpeed>);
+  table_.install(c::CommandId::SetPitch, &Board::on_param_id<c::CommandId::SetPitch>);
+  table_.install(c::CommandId::SetSteps, &Board::on_param_id<c::CommandId::SetSteps>);
+  table_.install(c::CommandId::SetMicrosteps, &Board::on_param_id<c::CommandId::SetMicrosteps>);
+  table_.install(c::CommandId::SetIrun, &Board::on_param_id<c::CommandId::SetIrun>);
+  table_.install(c::CommandId::SetIhold, &Board::on_param_id<c::CommandId::SetIhold>);
+  table_.install(c::CommandId::PeriphOff, &Board::on_periph_off);
+  table_.install(c::CommandId::PeriphOn, &Board::on_periph_on);
+  table_.install(c::CommandId::SaveParams, &Board::on_save);
+  table_.install(c::CommandId::ClearFault, &Board::on_clear);
+  derived_ = derive(store_.current());
+}
+
+BootResult Board::boot() {
+  BootResult r{};
+  r.store = store_.boot();
+  derived_ = derive(store_.current());
+  if (!derived_.ok) {
+    // A set that passed its CRC and range checks but does not convert (e.g. a speed above
+    // the step generator's range for this pitch) is not used; the defaults always convert.
+    derived_ = derive(st::defaults());
+    fault_ = kFaultBadParams;
+  }
+  r.drivers_ok = true;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    const auto init = drivers_[i].init();
+    if (!init) {
+      driver_fault(i, init.error());
+      r.drivers_ok = false;
+    }
+  }
+  r.drivers_ok = apply_currents() && apply_microsteps() && r.drivers_ok;
+
+  if (hw_.sample != nullptr) hw_.sample(hw_.ctx, in_);
+  const st::ParameterSet& p = store_.current();
+  const std::array<std::int32_t, kAxes> saved{p.step_count_x, p.step_count_y};
+  const auto rev = static_cast<std::int32_t>(axis::usteps_per_rev(derived_.mech));
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    r.start[i] = axis::start_position(&in_.encoder[i], {saved[i], p.step_counts_valid ? std::uint8_t{1} : std::uint8_t{0}},
+                                      rev);
+    axes_[i] = axis::initial_state(r.start[i]);
+  }
+  return r;
+}
+
+void Board::uart_rx(std::span<const std::uint8_t> bytes) {
+  for (const std::uint8_t b : bytes) {
+    if (rx_count_ == rx_.size()) {
+      ++counters_.rx_overruns;
+      continue;
+    }
+    rx_[(rx_head_ + rx_count_) % rx_.size()] = b;
+    ++rx_count_;
+  }
+}
+
+void Board::tick() {
+  ++ticks_;
+  param_cycle_ = false;
+  frame_this_cycle_ = false;
+  echo_count_ = 0;
+  pending_.fill(axis::Command{});
+  pending_id_.fill(c::CommandId::Nop);
+  refused_.fill(kNoRefusal);
+  begin_of_cycle();
+  receive();
+  step_axes();
+  check_drivers();
+  main_state_ = block_ != Block::None ? MainState::Blocked : (param_cycle_ ? MainState::ParamSet : MainState::UserControl);
+  send_echoes();
+}
+
+void Board::begin_of_cycle() {
+  if (hw_.sample != nullptr) hw_.sample(hw_.ctx, in_);
+  const std::uint16_t threshold = store_.current().low_battery_mv;
+  if (in_.battery_mv < threshold) {
+    battery_low_ = true;
+  } else if (static_cast<std::uint32_t>(in_.battery_mv) >= static_cast<std::uint32_t>(threshold) + kBatteryHysteresisMv) {
+    battery_low_ = false;
+  }
+  const Block was = block_;
+  block_ = in_.usb ? Block::Usb : (in_.charger ? Block::Charger : (battery_low_ ? Block::Battery : Block::None));
+  if (was != Block::None && block_ == Block::None) {
+    // G16: back to user control with every axis at rest and nothing pending; the axis core
+    // already dropped each axis's mode while blocked, so only the board's memory is cleared.
+    for (std::size_t i = 0; i < kAxes; ++i) {
+      axes_[i].mode = axis::Mode::Idle;
+      axes_[i].target = axes_[i].pos;
+      event_[i] = AxisEvent::None;
+    }
+  }
+  session_open_ = !in_.ble_status1 && in_.ble_status2;
+}
+
+void Board::receive() {
+  while (rx_count_ > 0 && echo_count_ < echoes_.size()) {
+    const std::uint8_t b = rx_[rx_head_];
+    rx_head_ = (rx_head_ + 1) % rx_.size();
+    --rx_count_;
+    if (auto e = framer_.push(b)) handle(*e);
+  }
+}
+
+void Board::handle(const frame::CommandFramer::Event& e) {
+  if (!e.rejection.ok()) {
+    // A malformed frame is answered but changes nothing else: no handler, no watchdog
+    // refresh, last_seq kept (docs/protocol.md, "What a rejected frame may change").
+    if (!session_open_) return;
+    echoes_[echo_count_++] = PendingEcho{true, e.rejection, last_seq_, {}};
+    return;
+  }
+  if (!session_open_) {
+    // G15: only a Data Session carries commands; bytes seen otherwise are line noise from
+    // the module's own traffic and nobody is listening for an answer.
+    ++counters_.gated_frames;
+    return;
+  }
+  if (block_ != Block::None) {
+    // §7.5.2: commands cannot change the blocked state, so none is executed; the echo still
+    // goes out so the PC can show why the unit does not move.
+    ++counters_.blocked_frames;
+    last_seq_ = e.frame.seq;
+    echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs};
+    return;
+  }
+  const frame::DispatchResult r = table_.dispatch(e.frame, this);
+  if (!r.rejection.ok()) {
+    ++counters_.unhandled_frames;
+    echoes_[echo_count_++] = PendingEcho{true, r.rejection, last_seq_, {}};
+    return;
+  }
+  ++counters_.dispatched_frames;
+  if (r.x == HandlerStatus::Refused) ++counters_.refused_parts;
+  if (r.y == HandlerStatus::Refused) ++counters_.refused_parts;
+  frame_this_cycle_ = true;
+  last_seq_ = e.frame.seq;
+  echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs};
+}
+
+void Board::step_axes() {
+  const bool was_alive = axis::link_alive(watchdog_);
+  watchdog_ = axis::watchdog_tick(watchdog_, frame_this_cycle_);
+  const bool alive = axis::link_alive(watchdog_);
+  if (was_alive && !alive) ++counters_.watchdog_expiries;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    axis::Input in;
+    in.cmd = pending_[i];
+    in.endstop_min = in_.endstop_min[i] != 0 ? 1 : 0;
+    in.endstop_max = in_.endstop_max[i] != 0 ? 1 : 0;
+    in.blocked = block_ != Block::None ? 1 : 0;
+    // G15: a closed session is a lost link just like silence.
+    in.link_alive = alive && session_open_ ? 1 : 0;
+    const axis::State before = axes_[i];
+    const axis::StepResult r = axis::step(before, in, derived_.cfg[i]);
+    axes_[i] = r.state;
+    if (in.cmd.kind != axis::CmdKind::None && r.out.error != axis::Error::None) {
+      refused_[i] = static_cast<std::uint8_t>(pending_id_[i]);
+      ++counters_.refused_parts;
+    }
+    const axis::Edge edge = r.out.edge;
+    if (edge == axis::Edge::G || edge == axis::Edge::H) {
+      event_[i] = before.mode == axis::Mode::Home && edge == axis::Edge::G ? AxisEvent::Reached : AxisEvent::Endstop;
+    } else if (r.out.error == axis::Error::HomeFailed) {
+      event_[i] = AxisEvent::HomeFailed;
+    } else if (before.mode == axis::Mode::Jog && r.state.mode == axis::Mode::Idle && in.link_alive == 0 &&
+               in.cmd.kind == axis::CmdKind::None) {
+      event_[i] = AxisEvent::LinkLost;
+    } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && r.state.pos == before.target) {
+      event_[i] = AxisEvent::Reached;
+    }
+    MotorOutput& m = motor_[i];
+    m.dir = r.out.dir;
+    m.steps = r.out.steps;
+    m.step_hz = static_cast<std::uint32_t>(r.out.step_speed / axis::kSpeedScale);
+    // G24: asleep, the drivers are switched off once the carriage stands; blocked they keep
+    // their hold current so the platform cannot be pushed off its counted position.
+    m.enable = !(sleeping_ && !moving(r.state) && r.out.steps == 0);
+    if (hw_.motor != nullptr) hw_.motor(hw_.ctx, static_cast<Axis>(i), m);
+  }
+}
+
+void Board::check_drivers() {
+  // One GSTAT read per driver every 100 ms, staggered, restores the registers after a chip
+  // reset (motor supply dip) without loading the SPI bus every tick.
+  const std::uint32_t phase = ticks_ % kDriverCheckPeriod;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    if (phase != i * (kDriverCheckPeriod / kAxes)) continue;
+    const auto r = drivers_[i].check_reset();
+    if (!r) driver_fault(i, r.error());
+  }
+}
+
+void Board::send_echoes() {
+  const frame::EchoSource source{this, &Board::echo_axis, &Board::echo_subscriber};
+  for (std::size_t k = 0; k < echo_count_; ++k) {
+    const PendingEcho& p = echoes_[k];
+    const frame::EchoFrame echo =
+        p.rejected ? frame::build_rejection_echo(p.seq, p.rejection) : frame::build_echo(p.seq, p.subs, source);
+    std::array<std::uint8_t, c::kEchoLength> out{};
+    // build_* clamp every value into its table range, so formatting cannot fail.
+    if (!frame::format_echo(echo, out).ok()) continue;
+    ++counters_.echoes_sent;
+    if (hw_.uart_tx != nullptr) hw_.uart_tx(hw_.ctx, out);
+  }
+  echo_count_ = 0;
+}
+
+ShutdownResult Board::shutdown() {
+  if (moving(axes_[0]) || moving(axes_[1])) return ShutdownResult::Moving;
+  const st::SaveResult r = store_.record_shutdown(axes_[0].pos, axes_[1].pos);
+  if (!r.ok()) {
+    fault_ = kFaultStorage + static_cast<std::int32_t>(r.status);
+    return ShutdownResult::StorageFault;
+  }
+  return ShutdownResult::Ok;
+}
+
+BoardCounters Board::counters() const {
+  BoardCounters k = counters_;
+  k.framer = framer_.counters();
+  return k;
+}
+
+std::int32_t Board::position_um(Axis a) const {
+  return clamp32(axis::usteps_to_um(axes_[idx(a)].pos, derived_.mech));
+}
+
+frame::AxisEcho Board::axis_echo(Axis a) const {
+  const std::size_t i = idx(a);
+  const axis::State& s = axes_[i];
+  const std::int32_t um = position_um(a);
+  switch (block_) {
+    case Block::Usb: return {c::EchoStatus::BlockedUsb, um};
+    case Block::Charger: return {c::EchoStatus::BlockedCharger, um};
+    case Block::Battery: return {c::EchoStatus::BlockedBattery, um};
+    case Block::None: break;
+  }
+  if (fault_ != 0) return {c::EchoStatus::Fault, fault_};
+  if (refused_[i] != kNoRefusal) return {c::EchoStatus::CommandRefused, refused_[i]};
+  if (sleeping_) return {c::EchoStatus::Sleeping, um};
+  if (moving(s)) {
+    if (s.mode == axis::Mode::Home) return {c::EchoStatus::Homing, um};
+    switch (s.phase) {
+      case axis::Phase::Accel: return {c::EchoStatus::Accelerating, um};
+      case axis::Phase::Decel: return {c::EchoStatus::Decelerating, um};
+      default: return {c::EchoStatus::ConstantSpeed, um};
+    }
+  }
+  switch (event_[i]) {
+    case AxisEvent::Reached: return {c::EchoStatus::TargetReached, um};
+    case AxisEvent::StoppedByUser: return {c::EchoStatus::StoppedByUser, um};
+    case AxisEvent::Endstop: return {c::EchoStatus::EndstopHit, um};
+    case AxisEvent::LinkLost: return {c::EchoStatus::LinkLost, um};
+    case AxisEvent::HomeFailed:
+    case AxisEvent::None: break;
+  }
+  return {c::EchoStatus::Idle, um};
+}
+
+std::int32_t Board::subscriber(frame::SubscriberSlot slot) {
+  const std::size_t ax = slot.arg < kAxes ? slot.arg : 0;
+  switch (slot.id) {
+    case c::SubscriberId::None: return 0;
+    case c::SubscriberId::BatteryMv: return in_.battery_mv;
+    case c::SubscriberId::ChargeMa: return in_.charge_ma;
+    case c::SubscriberId::TemperatureMc: return in_.temperature_mc;
+    case c::SubscriberId::RotationMdeg: return in_.rotation_mdeg;
+    case c::SubscriberId::EncoderUm: {
+      const auto rev = static_cast<std::int32_t>(axis::usteps_per_rev(derived_.mech));
+      const axis::StartPosition p = axis::encoder_to_usteps(in_.encoder[ax], rev);
+      return p.error == axis::Error::None ? clamp32(axis::usteps_to_um(p.pos, derived_.mech)) : 0;
+    }
+    case c::SubscriberId::DrvStatusLo:
+    case c::SubscriberId::DrvStatusHi: {
+      const auto r = drivers_[ax].read(tmc::Reg::DRV_STATUS);
+      if (!r) return 0;
+      return static_cast<std::int32_t>(slot.id == c::SubscriberId::DrvStatusLo ? (*r & 0xFFFFU) : (*r >> 16));
+    }
+    case c::SubscriberId::Param: {
+      if (slot.arg >= st::kItemCount) return 0;
+      const auto v = st::get_field(store_.current(), static_cast<st::ParamId>(slot.arg));
+      return v ? clamp32(*v) : 0;
+    }
+    case c::SubscriberId::LinkStats: {
+      const frame::FramerCounters f = framer_.counters();
+      switch (static_cast<c::LinkStat>(slot.arg)) {
+        case c::LinkStat::AcceptedFrames: return wrap_million(f.accepted_frames);
+        case c::LinkStat::RejectedFrames: return wrap_million(f.rejected_frames);
+        case c::LinkStat::RejectedBytes: return wrap_million(f.rejected_bytes);
+        case c::LinkStat::WatchdogExpiries: return wrap_million(counters_.watchdog_expiries);
+      }
+      return 0;
+    }
+  }
+  return 0;
+}
+
+frame::AxisEcho Board::echo_axis(void* ctx, Axis a) { return static_cast<const Board*>(ctx)->axis_echo(a); }
+
+std::int32_t Board::echo_subscriber(void* ctx, frame::SubscriberSlot slot) {
+  return static_cast<Board*>(ctx)->subscriber(slot);
+}
+
+// ---- handlers ---------------------------------------------------------------------------
+
+frame::HandlerStatus Board::refuse(Axis a, c::CommandId id) {
+  refused_[idx(a)] = static_cast<std::uint8_t>(id);
+  return HandlerStatus::Refused;
+}
+
+bool Board::motion_permitted(Axis a, c::CommandId id) {
+  if (sleeping_) return false;
+  // The saved step counter stops being trustworthy the moment the carriage may move, so
+  // its validity flag is cleared in FRAM (verified) before the first step; if that write
+  // fails, the motion is refused rather than leaving a stale "valid" counter behind.
+  const st::SaveResult r = store_.begin_motion();
+  if (!r.ok()) {
+    fault_ = kFaultStorage + static_cast<std::int32_t>(r.status);
+    return false;
+  }
+  (void)a;
+  (void)id;
+  return true;
+}
+
+frame::HandlerStatus Board::set_axis_command(Axis a, c::CommandId id, const axis::Command& cmd) {
+  const std::size_t i = idx(a);
+  pending_[i] = cmd;
+  pending_id_[i] = id;
+  event_[i] = cmd.kind == axis::CmdKind::Stop ? AxisEvent::StoppedByUser : AxisEvent::None;
+  return HandlerStatus::Done;
+}
+
+HandlerStatus Board::on_nop(void*, Axis, std::int32_t) { return HandlerStatus::Done; }
+
+HandlerStatus Board::on_stop(void* ctx, Axis a, std::int32_t) {
+  auto* b = static_cast<Board*>(ctx);
+  return b->set_axis_command(a, c::CommandId::Stop, {axis::CmdKind::Stop, 0, 0, 0});
+}
+
+HandlerStatus Board::on_jog(void* ctx, Axis a, std::int32_t data) {
+  auto* b = static_cast<Board*>(ctx);
+  if (data == 0) return b->set_axis_command(a, c::CommandId::Jog, {axis::CmdKind::Stop, 0, 0, 0});
+  if (!b->motion_permitted(a, c::CommandId::Jog)) return b->refuse(a, c::CommandId::Jog);
+  const std::int8_t dir = data > 0 ? std::int8_t{1} : std::int8_t{-1};
+  const std::uint8_t level = (data == c::kJogFast || data == -c::kJogFast) ? 1 : 0;
+  return b->set_axis_command(a, c::CommandId::Jog, {axis::CmdKind::Jog, dir, level, 0});
+}
+
+HandlerStatus Board::on_goto(void* ctx, Axis a, std::int32_t um) {
+  auto* b = static_cast<Board*>(ctx);
+  const st::ParameterSet& p = b->store_.current();
+  const bool x = a == Axis::X;
+  const axis::Converted t =
+      axis::target_to_usteps(um, x ? p.soft_min_x_um : p.soft_min_y_um, x ? p.soft_max_x_um : p.soft_max_y_um, b->derived_.mech);
+  if (t.error != axis::Error::None) return b->refuse(a, c::CommandId::Goto);
+  if (!b->motion_permitted(a, c::CommandId::Goto)) return b->refuse(a, c::CommandId::Goto);
+  // Positioning runs at the fast level (§4.9: the two levels are the manual speeds; a move
+  // uses the configured positioning speed, which is the fast one).
+  return b->set_axis_command(a, c::CommandId::Goto, {axis::CmdKind::MoveAbs, 0, 1, t.value});
+}
+
+HandlerStatus Board::on_move(void* ctx, Axis a, std::int32_t um) {
+  auto* b = static_cast<Board*>(ctx);
+  const axis::Converted d = axis::um_to_usteps(um, b->derived_.mech, axis::Round::Nearest);
+  if (d.error != axis::Error::None) return b->refuse(a, c::CommandId::Move);
+  if (!b->motion_permitted(a, c::CommandId::Move)) return b->refuse(a, c::CommandId::Move);
+  return b->set_axis_command(a, c::CommandId::Move, {axis::CmdKind::MoveRel, 0, 1, d.value});
+}
+
+HandlerStatus Board::on_home(void* ctx, Axis a, std::int32_t) {
+  auto* b = static_cast<Board*>(ctx);
+  if (!b->motion_permitted(a, c::CommandId::Home)) return b->refuse(a, c::CommandId::Home);
+  return b->set_axis_command(a, c::CommandId::Home, {axis::CmdKind::Home, 0, 0, 0});
+}
+
+HandlerStatus Board::on_param(void* ctx, Axis a, std::int32_t value, c::CommandId id) {
+  auto* b = static_cast<Board*>(ctx);
+  st::ParamId pid = st::ParamId::MaxAcceleration;
+  switch (id) {
+    case c::CommandId::SetFastSpeed: pid = st::ParamId::FastSpeed; break;
+    case c::CommandId::SetSlowSpeed: pid = st::ParamId::SlowSpeed; break;
+    case c::CommandId::SetAccel: pid = st::ParamId::MaxAcceleration; break;
+    case c::CommandId::SetStartSpeed: pid = st::ParamId::StartSpeed; break;
+    case c::CommandId::SetPitch: pid = st::ParamId::LeadPitch; break;
+    case c::CommandId::SetSteps: pid = st::ParamId::StepsPerRev; break;
+    case c::CommandId::SetMicrosteps: pid = st::ParamId::Microsteps; break;
+    case c::CommandId::SetIrun: pid = st::ParamId::RunCurrent; break;
+    case c::CommandId::SetIhold: pid = st::ParamId::HoldCurrent; break;
+    default: return b->refuse(a, id);
+  }
+  return b->set_parameter(a, id, pid, value);
+}
+
+HandlerStatus Board::set_parameter(Axis a, c::CommandId id, st::ParamId pid, std::int32_t value) {
+  param_cycle_ = true;
+  st::ParameterSet next = store_.current();
+  if (!st::set_field(next, pid, value) || !st::validate(next).ok()) return refuse(a, id);
+  const Derived d = derive(next);
+  if (!d.ok) return refuse(a, id);
+  const bool mechanics = pid == st::ParamId::LeadPitch || pid == st::ParamId::StepsPerRev || pid == st::ParamId::Microsteps;
+  // The step counters count microsteps of the old mechanics: changing them under a moving
+  // carriage would make position and target meaningless, so only at rest.
+  if (mechanics && (moving(axes_[0]) || moving(axes_[1]))) return refuse(a, id);
+  const st::SaveResult r = store_.save(next);
+  if (!r.ok()) {
+    // The store keeps using the previous verified set; so does the board.
+    fault_ = kFaultStorage + static_cast<std::int32_t>(r.status);
+    return HandlerStatus::Done;
+  }
+  if (mechanics) {
+    for (std::size_t i = 0; i < kAxes; ++i) {
+      const std::int64_t um = axis::usteps_to_um(axes_[i].pos, derived_.mech);
+      const axis::Converted p = axis::um_to_usteps(clamp32(um), d.mech, axis::Round::Nearest);
+      if (p.error == axis::Error::None) {
+        axes_[i].pos = p.value;
+      } else {
+        axes_[i].homed = 0;  // not representable any more: the axis must home again
+      }
+      axes_[i].target = axes_[i].pos;
+      axes_[i].mode = axis::Mode::Idle;
+      axes_[i].frac = 0;
+    }
+  }
+  derived_ = d;
+  if (pid == st::ParamId::RunCurrent || pid == st::ParamId::HoldCurrent) (void)apply_currents();
+  if (pid == st::ParamId::Microsteps) (void)apply_microsteps();
+  return HandlerStatus::Done;
+}
+
+bool Board::apply_currents() {
+  const st::ParameterSet& p = store_.current();
+  bool ok = true;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    const auto r = drivers_[i].update(tmc::Reg::IHOLD_IRUN, {{tmc::Field::IHOLD_IRUN_IHOLD, p.hold_current_cs},
+                                                             {tmc::Field::IHOLD_IRUN_IRUN, p.run_current_cs}});
+    if (!r) {
+      driver_fault(i, r.error());
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+bool Board::apply_microsteps() {
+  const std::int64_t mres = mres_of(store_.current().microsteps);
+  bool ok = true;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    const auto r = drivers_[i].set(tmc::Field::CHOPCONF_MRES, mres);
+    if (!r) {
+      driver_fault(i, r.error());
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+void Board::driver_fault(std::size_t i, tmc::Error e) {
+  fault_ = (i == 0 ? kFaultDriverX : kFaultDriverY) + static_cast<std::int32_t>(e);
+}
+
+HandlerStatus Board::on_periph_off(void* ctx, Axis, std::int32_t) {
+  auto* b = static_cast<Board*>(ctx);
+  b->sleeping_ = true;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    b->pending_[i] = {axis::CmdKind::Stop, 0, 0, 0};
+    b->pending_id_[i] = c::CommandId::PeriphOff;
+  }
+  return HandlerStatus::Done;
+}
+
+HandlerStatus Board::on_periph_on(void* ctx, Axis, std::int32_t) {
+  static_cast<Board*>(ctx)->sleeping_ = false;
+  return HandlerStatus::Done;
+}
+
+HandlerStatus Board::on_save(void* ctx, Axis, std::int32_t) {
+  auto* b = static_cast<Board*>(ctx);
+  b->param_cycle_ = true;
+  const st::SaveResult r = b->store_.save(b->store_.current());
+  if (!r.ok()) b->fault_ = kFaultStorage + static_cast<std::int32_t>(r.status);
+  return HandlerStatus::Done;
+}
+
+HandlerStatus Board::on_clear(void* ctx, Axis, std::int32_t) {
+  static_cast<Board*>(ctx)->fault_ = 0;
+  return HandlerStatus::Done;
+}
+
+}  // namespace ap::board

@@ -1,0 +1,112 @@
+// Test fixture for the board core: the core wired to the TMC2130 and MB85RS256B device
+// models, scripted inputs, captured UART echoes and motor outputs. Shared by the board tests
+// and the board fuzz target (fuzz/board), so both drive the board exactly the same way.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "codec/layout.hpp"
+#include "core/board/board.hpp"
+#include "core/frame/command_codec.hpp"
+#include "core/frame/echo_codec.hpp"
+#include "models/fram/mb85rs256b.hpp"
+#include "models/tmc2130/device.hpp"
+
+namespace ap::board::test {
+
+using Echo = std::array<std::uint8_t, codec::kEchoLength>;
+
+struct Rig {
+  model::Mb85rs256b fram;
+  std::array<model::tmc2130::Device, kAxes> tmc{};
+  Inputs in{};
+  std::vector<Echo> tx;  // every echo the board sent, in order
+  std::array<MotorOutput, kAxes> motor{};
+  std::array<std::int64_t, kAxes> steps_total{};
+  std::unique_ptr<Board> board;
+  std::uint16_t seq = 0;
+
+  Rig() {
+    in.ble_status1 = false;  // Data Session open (Tab. 7-2: 0, 1)
+    in.ble_status2 = true;
+    in.battery_mv = 4000;
+  }
+
+  static void sample(void* ctx, Inputs& out) { out = static_cast<Rig*>(ctx)->in; }
+  static void drive(void* ctx, Axis a, const MotorOutput& m) {
+    auto* r = static_cast<Rig*>(ctx);
+    r->motor[static_cast<std::size_t>(a)] = m;
+    r->steps_total[static_cast<std::size_t>(a)] += m.dir * static_cast<std::int64_t>(m.steps);
+  }
+  static void uart(void* ctx, std::span<const std::uint8_t> bytes) {
+    Echo e{};
+    if (bytes.size() == e.size()) {
+      std::copy(bytes.begin(), bytes.end(), e.begin());
+      static_cast<Rig*>(ctx)->tx.push_back(e);
+    }
+  }
+
+  Hardware hardware() {
+    Hardware hw;
+    hw.ctx = this;
+    hw.tmc = {tmc[0].port(), tmc[1].port()};
+    hw.fram = fram.bus();
+    hw.sample = &Rig::sample;
+    hw.motor = &Rig::drive;
+    hw.uart_tx = &Rig::uart;
+    return hw;
+  }
+
+  // Power-up (or reboot: the FRAM and the driver chips keep their contents).
+  BootResult boot() {
+    board = std::make_unique<Board>(hardware());
+    return board->boot();
+  }
+
+  void tick(int n = 1) {
+    for (int i = 0; i < n; ++i) {
+      board->tick();
+      for (auto& d : tmc) d.clear_log();
+    }
+  }
+
+  static frame::CommandFrame frame_of(std::uint16_t s, codec::CommandId x, std::int32_t xd, codec::CommandId y,
+                                      std::int32_t yd, frame::SubscriberSlots subs = {}) {
+    frame::CommandFrame f;
+    f.seq = static_cast<std::uint16_t>(s % codec::kSeqModulo);
+    f.x = {x, xd};
+    f.y = {y, yd};
+    f.subs = subs;
+    return f;
+  }
+
+  static std::array<std::uint8_t, codec::kCommandLength> bytes_of(const frame::CommandFrame& f) {
+    std::array<std::uint8_t, codec::kCommandLength> b{};
+    (void)frame::format_command(f, b);
+    return b;
+  }
+
+  // Sends one command frame (next sequence number) into the UART.
+  void send(codec::CommandId x, std::int32_t xd, codec::CommandId y = codec::CommandId::Nop, std::int32_t yd = 0,
+            frame::SubscriberSlots subs = {}) {
+    const auto b = bytes_of(frame_of(++seq, x, xd, y, yd, subs));
+    board->uart_rx(b);
+  }
+  void send_raw(std::span<const std::uint8_t> b) { board->uart_rx(b); }
+
+  std::optional<frame::EchoFrame> last_echo() const {
+    if (tx.empty()) return std::nullopt;
+    frame::EchoFrame e;
+    if (!frame::parse_echo(tx.back(), e).ok()) return std::nullopt;
+    return e;
+  }
+
+  const axis::State& ax(Axis a) const { return board->axis_state(a); }
+};
+
+}  // namespace ap::board::test

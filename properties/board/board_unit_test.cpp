@@ -1,0 +1,389 @@
+// The board core (core/board) wired to the device models: blocking (G16, G23), BLE session
+// gating (G15), the link watchdog, malformed frames, parameter save/reboot/reload, driver
+// currents, endstops, the echo at the end of the cycle, the step-counter validity flag.
+#include <gtest/gtest.h>
+
+#include "board_rig.hpp"
+#include "codec/statuses.hpp"
+#include "core/tmc2130/fields.hpp"
+
+using namespace ap;
+using namespace ap::board;
+using ap::board::test::Rig;
+using C = codec::CommandId;
+using S = codec::EchoStatus;
+namespace tmc = ap::core::tmc2130;
+
+namespace {
+
+frame::SubscriberSlots subs_of(codec::SubscriberId id, std::uint8_t arg = 0) {
+  frame::SubscriberSlots s{};
+  s[0] = {id, arg};
+  return s;
+}
+
+// Keeps a jog alive the way the PC does: one frame every 100 ms.
+void jog_for(Rig& r, Axis a, std::int32_t level, int ticks) {
+  for (int t = 0; t < ticks; ++t) {
+    if (t % 100 == 0) {
+      if (a == Axis::X) {
+        r.send(C::Jog, level);
+      } else {
+        r.send(C::Nop, 0, C::Jog, level);
+      }
+    }
+    r.tick();
+  }
+}
+
+}  // namespace
+
+TEST(BoardBoot, BlankFramGivesDefaultsAndDriversGetStoredCurrents) {
+  Rig r;
+  const BootResult b = r.boot();
+  EXPECT_TRUE(b.store.defaults_used());
+  EXPECT_TRUE(b.drivers_ok);
+  const auto d = storage::defaults();
+  for (auto& chip : r.tmc) {
+    const std::uint32_t w = chip.chip_register(tmc::Reg::IHOLD_IRUN);
+    EXPECT_EQ(tmc::field_get(w, tmc::Field::IHOLD_IRUN_IRUN), d.run_current_cs);
+    EXPECT_EQ(tmc::field_get(w, tmc::Field::IHOLD_IRUN_IHOLD), d.hold_current_cs);
+    EXPECT_EQ(tmc::field_get(chip.chip_register(tmc::Reg::CHOPCONF), tmc::Field::CHOPCONF_MRES), 4);  // 16 usteps
+  }
+  EXPECT_EQ(r.board->main_state(), MainState::UserControl);
+  EXPECT_EQ(r.ax(Axis::X).homed, 0);  // no encoder, no valid counter
+}
+
+TEST(BoardEcho, EchoIsBuiltAfterTheCommandTookEffect) {
+  Rig r;
+  r.boot();
+  r.send(C::Jog, 2, C::SetAccel, 30000, subs_of(codec::SubscriberId::Param, static_cast<std::uint8_t>(storage::ParamId::MaxAcceleration)));
+  EXPECT_TRUE(r.tx.empty());  // nothing is answered from the interrupt
+  r.tick();
+  ASSERT_EQ(r.tx.size(), 1U);
+  const auto e = r.last_echo();
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->seq, r.seq);
+  EXPECT_EQ(e->x.status, S::Accelerating);  // the jog already started in this cycle
+  EXPECT_GT(r.ax(Axis::X).v, 0);  // DIR set this tick, first STEP the next (setup time)
+  EXPECT_EQ(e->subs[0].data, 30000);  // the parameter written this cycle, read back
+  EXPECT_EQ(r.board->main_state(), MainState::ParamSet);
+  r.tick();
+  EXPECT_EQ(r.board->main_state(), MainState::UserControl);
+  EXPECT_EQ(r.tx.size(), 1U);  // one echo per command
+}
+
+TEST(BoardBlock, ChargerBlocksWithDecelerationAndUnblockClearsTargets) {
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::X, 2, 400);
+  const std::int32_t v_top = r.ax(Axis::X).v;
+  ASSERT_GT(v_top, 0);
+  r.in.charger = true;
+  std::int32_t prev_v = v_top;
+  bool stopped = false;
+  for (int t = 0; t < 2000; ++t) {
+    if (t % 100 == 0) r.send(C::Jog, 2);  // the PC keeps asking: must not matter
+    r.tick();
+    const auto& s = r.ax(Axis::X);
+    EXPECT_LE(s.v, prev_v);  // brakes, never speeds up
+    EXPECT_LE(prev_v - s.v, r.board->axis_config(Axis::X).accel + r.board->axis_config(Axis::X).v_start * axis::kSpeedScale);
+    if (stopped) EXPECT_EQ(r.motor[0].steps, 0);
+    stopped = stopped || s.v == 0;
+    prev_v = s.v;
+  }
+  EXPECT_TRUE(stopped);
+  EXPECT_GT(prev_v - v_top, -v_top - 1);
+  EXPECT_EQ(r.board->main_state(), MainState::Blocked);
+  EXPECT_EQ(r.board->block(), Block::Charger);
+  ASSERT_TRUE(r.last_echo().has_value());
+  EXPECT_EQ(r.last_echo()->x.status, S::BlockedCharger);
+  EXPECT_GT(r.board->counters().blocked_frames, 0U);
+
+  r.in.charger = false;
+  r.tick(50);
+  EXPECT_EQ(r.board->main_state(), MainState::UserControl);
+  EXPECT_EQ(r.ax(Axis::X).mode, axis::Mode::Idle);
+  EXPECT_EQ(r.ax(Axis::X).target, r.ax(Axis::X).pos);
+  const std::int64_t at = r.steps_total[0];
+  r.tick(500);  // G16: nothing resumes on its own
+  EXPECT_EQ(r.steps_total[0], at);
+  jog_for(r, Axis::X, 1, 100);  // a new command moves again
+  EXPECT_GT(r.steps_total[0], at);
+}
+
+TEST(BoardBlock, UsbAndLowBatteryAgainstTheStoredThresholdWithHysteresis) {
+  Rig r;
+  r.boot();
+  const std::uint16_t th = r.board->store().current().low_battery_mv;
+  r.in.usb = true;
+  r.tick();
+  EXPECT_EQ(r.board->block(), Block::Usb);
+  r.in.usb = false;
+  r.in.battery_mv = static_cast<std::uint16_t>(th - 1);
+  r.tick();
+  EXPECT_EQ(r.board->block(), Block::Battery);
+  r.in.battery_mv = th;
+  r.tick();
+  EXPECT_EQ(r.board->block(), Block::Battery);  // within the hysteresis
+  r.in.battery_mv = static_cast<std::uint16_t>(th + kBatteryHysteresisMv);
+  r.tick();
+  EXPECT_EQ(r.board->block(), Block::None);
+  r.in.battery_mv = th;
+  r.tick();
+  EXPECT_EQ(r.board->block(), Block::None);
+  // Jog refused while blocked: no step at all.
+  r.in.battery_mv = static_cast<std::uint16_t>(th - 1);
+  jog_for(r, Axis::Y, -2, 300);
+  EXPECT_EQ(r.steps_total[1], 0);
+  EXPECT_EQ(r.last_echo()->y.status, S::BlockedBattery);
+}
+
+TEST(BoardSession, OnlyDataSessionOpenAcceptsCommands) {
+  for (const auto& pins : {std::pair{true, true}, std::pair{true, false}, std::pair{false, false}}) {
+    Rig r;
+    r.boot();
+    r.in.ble_status1 = pins.first;
+    r.in.ble_status2 = pins.second;
+    jog_for(r, Axis::X, 2, 300);
+    EXPECT_EQ(r.steps_total[0], 0);
+    EXPECT_TRUE(r.tx.empty());
+    EXPECT_EQ(r.board->counters().gated_frames, 3U);
+    EXPECT_EQ(r.board->counters().dispatched_frames, 0U);
+    EXPECT_FALSE(r.board->session_open());
+  }
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::X, 2, 300);
+  EXPECT_GT(r.steps_total[0], 0);
+  // Session lost mid-jog (G15): the jog ends with a ramped stop.
+  r.in.ble_status2 = false;
+  const std::int32_t v = r.ax(Axis::X).v;
+  ASSERT_GT(v, 0);
+  r.tick();
+  EXPECT_NE(r.ax(Axis::X).mode, axis::Mode::Jog);
+  EXPECT_LT(r.ax(Axis::X).v, v);
+  EXPECT_GT(r.ax(Axis::X).v, 0);  // decelerating, not an emergency stop
+}
+
+TEST(BoardWatchdog, SilenceStopsAJogWithDecelerationAndMalformedFramesDoNotRefresh) {
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::X, 2, 300);
+  ASSERT_EQ(r.ax(Axis::X).mode, axis::Mode::Jog);
+  // 100 ms keep-alives hold the jog...
+  jog_for(r, Axis::X, 2, 1000);
+  EXPECT_EQ(r.ax(Axis::X).mode, axis::Mode::Jog);
+  // ...corrupted ones do not.
+  auto bad = Rig::bytes_of(Rig::frame_of(++r.seq, C::Jog, 2, C::Nop, 0));
+  bad[codec::kCommandCrcOffset] = bad[codec::kCommandCrcOffset] == 'A' ? 'B' : 'A';
+  int t = 0;
+  const int last_valid = 0;
+  for (; t < 1000 && r.ax(Axis::X).mode == axis::Mode::Jog; ++t) {
+    if (t % 50 == 0) r.send_raw(bad);
+    r.tick();
+  }
+  EXPECT_GE(t - last_valid, 200);  // still jogging at least 2 periods after the last good frame
+  EXPECT_LE(t, 300 + 1);
+  EXPECT_EQ(r.board->counters().watchdog_expiries, 1U);
+  const std::int32_t v = r.ax(Axis::X).v;
+  EXPECT_GT(v, 0);  // ramped stop: still moving right after the expiry
+  r.tick(2000);
+  EXPECT_EQ(r.ax(Axis::X).v, 0);
+  r.send(C::Nop, 0);
+  r.tick();
+  EXPECT_EQ(r.last_echo()->x.status, S::LinkLost);
+}
+
+TEST(BoardMalformed, RejectedFrameChangesOnlyCountersAndGetsATypedEcho) {
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::X, 1, 150);
+  const auto before_x = r.ax(Axis::X);
+  const auto before_params = r.board->store().current();
+  const auto seq = r.board->last_seq();
+  const auto k0 = r.board->counters();
+  auto bad = Rig::bytes_of(Rig::frame_of(++r.seq, C::Goto, 5000, C::Jog, 2));
+  bad[codec::kCommandCrcOffset + 3] = bad[codec::kCommandCrcOffset + 3] == '0' ? '1' : '0';
+  r.send_raw(bad);
+  // Compare against an identical board that did not get the frame.
+  Rig twin;
+  twin.boot();
+  jog_for(twin, Axis::X, 1, 150);
+  r.tick();
+  twin.tick();
+  const auto e = r.last_echo();
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->x.status, S::FrameRejected);
+  EXPECT_EQ(e->x.data, static_cast<std::int32_t>(codec::FrameError::BadCrc) * 100 + 36);
+  EXPECT_EQ(e->seq, seq);
+  EXPECT_EQ(r.board->last_seq(), seq);
+  EXPECT_EQ(r.ax(Axis::X).pos, twin.ax(Axis::X).pos);
+  EXPECT_EQ(r.ax(Axis::X).v, twin.ax(Axis::X).v);
+  EXPECT_EQ(r.ax(Axis::Y).mode, axis::Mode::Idle);
+  EXPECT_EQ(r.board->store().current(), before_params);
+  const auto k1 = r.board->counters();
+  EXPECT_EQ(k1.framer.rejected_frames, k0.framer.rejected_frames + 1);
+  EXPECT_EQ(k1.dispatched_frames, k0.dispatched_frames);
+  (void)before_x;
+}
+
+TEST(BoardParams, SaveRebootReloadAndConvertedToMicrosteps) {
+  Rig r;
+  r.boot();
+  r.send(C::SetAccel, 40000);
+  r.tick();
+  r.send(C::SetFastSpeed, 12000);
+  r.tick();
+  EXPECT_EQ(r.board->store().current().max_acceleration_um_s2, 40000U);
+  // 40000 um/s^2 at 2 mm pitch, 200 x 16: 64000 usteps/s^2.
+  EXPECT_EQ(r.board->axis_config(Axis::Y).accel, 64000);
+  EXPECT_EQ(r.board->axis_config(Axis::X).v_fast, 19200);
+  const BootResult b = r.boot();  // reboot on the same FRAM
+  EXPECT_FALSE(b.store.defaults_used());
+  EXPECT_EQ(r.board->store().current().max_acceleration_um_s2, 40000U);
+  EXPECT_EQ(r.board->store().current().fast_speed_um_s, 12000U);
+  EXPECT_EQ(r.board->axis_config(Axis::X).accel, 64000);
+}
+
+TEST(BoardParams, InvalidParameterIsRefusedAndNothingIsWritten) {
+  Rig r;
+  r.boot();
+  const auto seq = r.board->store().sequence();
+  r.send(C::SetSlowSpeed, 20000);  // above the fast speed: breaks the speed order
+  r.tick();
+  EXPECT_EQ(r.last_echo()->x.status, S::CommandRefused);
+  EXPECT_EQ(r.last_echo()->x.data, static_cast<std::int32_t>(C::SetSlowSpeed));
+  r.send(C::SetMicrosteps, 3);  // not a power of two
+  r.tick();
+  EXPECT_EQ(r.last_echo()->x.status, S::CommandRefused);
+  EXPECT_EQ(r.board->store().sequence(), seq);
+  EXPECT_EQ(r.board->store().current(), storage::defaults());
+}
+
+TEST(BoardParams, StorageFaultShowsInTheEchoAndKeepsThePreviousSet) {
+  Rig r;
+  r.boot();
+  // Both copies' first byte stuck: every verify fails.
+  for (const auto base : storage::kCopyBase) r.fram.stick_bits(base, 0xFF, 0x5A);
+  r.send(C::SetAccel, 30000);
+  r.tick();
+  const auto e = r.last_echo();
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->x.status, S::Fault);
+  EXPECT_EQ(e->x.data, kFaultStorage + static_cast<std::int32_t>(storage::StoreStatus::StorageFault));
+  EXPECT_EQ(r.board->store().current().max_acceleration_um_s2, storage::defaults().max_acceleration_um_s2);
+  EXPECT_EQ(r.board->axis_config(Axis::X).accel, 32000);
+  r.fram.clear_faults();
+  r.send(C::ClearFault, 0);
+  r.tick();
+  EXPECT_EQ(r.last_echo()->x.status, S::Idle);
+}
+
+TEST(BoardDriver, IrunIholdChangeReachesBothChipsAndSurvivesAChipReset) {
+  Rig r;
+  r.boot();
+  r.send(C::SetIrun, 22, C::SetIhold, 5);
+  r.tick();
+  for (auto& chip : r.tmc) {
+    const std::uint32_t w = chip.chip_register(tmc::Reg::IHOLD_IRUN);
+    EXPECT_EQ(tmc::field_get(w, tmc::Field::IHOLD_IRUN_IRUN), 22);
+    EXPECT_EQ(tmc::field_get(w, tmc::Field::IHOLD_IRUN_IHOLD), 5);
+  }
+  r.tmc[1].power_cycle();
+  EXPECT_EQ(r.tmc[1].chip_register(tmc::Reg::IHOLD_IRUN), 0U);
+  r.tick(static_cast<int>(kDriverCheckPeriod));
+  EXPECT_EQ(tmc::field_get(r.tmc[1].chip_register(tmc::Reg::IHOLD_IRUN), tmc::Field::IHOLD_IRUN_IRUN), 22);
+  r.boot();  // and after a reboot from FRAM
+  EXPECT_EQ(tmc::field_get(r.tmc[0].chip_register(tmc::Reg::IHOLD_IRUN), tmc::Field::IHOLD_IRUN_IRUN), 22);
+}
+
+TEST(BoardEndstop, HitStopsAtOnceAndRefusesFurtherMotionTowardIt) {
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::Y, 2, 300);
+  ASSERT_GT(r.ax(Axis::Y).v, 0);
+  r.in.endstop_max[1] = 1;
+  r.tick();
+  EXPECT_EQ(r.ax(Axis::Y).v, 0);
+  EXPECT_EQ(r.motor[1].steps, 0);
+  const std::int64_t at = r.steps_total[1];
+  jog_for(r, Axis::Y, 2, 300);
+  EXPECT_EQ(r.steps_total[1], at);
+  EXPECT_EQ(r.last_echo()->y.status, S::CommandRefused);
+  jog_for(r, Axis::Y, -1, 300);  // away from it is allowed
+  EXPECT_LT(r.steps_total[1], at);
+  r.send(C::Stop, 0, C::Stop, 0);
+  r.tick();
+  EXPECT_EQ(r.last_echo()->y.status, S::Decelerating);
+  r.tick(500);
+  r.send(C::Nop, 0, C::Nop, 0);
+  r.tick();
+  EXPECT_EQ(r.last_echo()->y.status, S::StoppedByUser);
+}
+
+TEST(BoardStepCounter, ValidOnlyAfterOrderlyShutdownAndClearedBeforeMotion) {
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::X, 2, 300);
+  r.send(C::Stop, 0);
+  r.tick(1000);
+  const std::int32_t pos = r.ax(Axis::X).pos;
+  ASSERT_NE(pos, 0);
+  EXPECT_EQ(r.board->shutdown(), ShutdownResult::Ok);
+  EXPECT_TRUE(r.board->store().current().step_counts_valid);
+  const BootResult b = r.boot();
+  EXPECT_EQ(b.start[0].homed, 1);
+  EXPECT_EQ(r.ax(Axis::X).pos, pos);
+  EXPECT_TRUE(r.board->store().current().step_counts_valid);
+  r.send(C::Jog, 1);
+  r.tick();
+  EXPECT_GT(r.ax(Axis::X).v, 0);
+  EXPECT_FALSE(r.board->store().current().step_counts_valid);
+  r.boot();  // a crash (no shutdown) now: the counter is not trusted
+  EXPECT_EQ(r.ax(Axis::X).homed, 0);
+}
+
+TEST(BoardStepCounter, ShutdownRefusedWhileMoving) {
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::X, 2, 200);
+  EXPECT_EQ(r.board->shutdown(), ShutdownResult::Moving);
+  EXPECT_FALSE(r.board->store().current().step_counts_valid);
+}
+
+TEST(BoardSleep, PeripheralsOffRefusesMotionAndDisablesDrivers) {
+  Rig r;
+  r.boot();
+  jog_for(r, Axis::X, 2, 200);
+  r.send(C::PeriphOff, 0);
+  r.tick(1500);
+  EXPECT_EQ(r.ax(Axis::X).v, 0);
+  EXPECT_FALSE(r.motor[0].enable);
+  const std::int64_t at = r.steps_total[0];
+  jog_for(r, Axis::X, 2, 300);
+  EXPECT_EQ(r.steps_total[0], at);
+  EXPECT_EQ(r.last_echo()->x.status, S::CommandRefused);
+  r.send(C::PeriphOn, 0);
+  r.tick();
+  EXPECT_TRUE(r.motor[0].enable);
+  jog_for(r, Axis::X, 2, 300);
+  EXPECT_GT(r.steps_total[0], at);
+}
+
+TEST(BoardCallbackTable, BoundCheckRejectsTheFirstIdPastTheTable) {
+  frame::CallbackTable t;
+  const frame::Handler h = [](void*, frame::Axis, std::int32_t) { return frame::HandlerStatus::Done; };
+  EXPECT_FALSE(t.install(frame::CallbackTable::kSize, h));
+  EXPECT_EQ(t.find(frame::CallbackTable::kSize), nullptr);
+  EXPECT_TRUE(t.install(frame::CallbackTable::kSize - 1, h));
+}
+
+TEST(BoardEncoder, StartPositionFromTheEncoderWinsOverTheSavedCounter) {
+  Rig r;
+  r.in.encoder[1] = {2, 8192, 1};  // 2.5 revolutions
+  r.boot();
+  EXPECT_EQ(r.ax(Axis::Y).homed, 1);
+  EXPECT_EQ(r.ax(Axis::Y).pos, 8000);  // 2.5 x 3200 usteps
+  EXPECT_EQ(r.board->position_um(Axis::Y), 5000);
+}
