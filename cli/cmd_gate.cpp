@@ -1,107 +1,403 @@
-// axisproof gate: the release gate. Runs each stage in order, prints a verdict table
-// (stage, result, time, key figure) and exits 0 only when every stage PASSed.
-// A stage that could not run is NOT RUN, and NOT RUN fails the gate: a gate that
-// skips silently would pass firmware nobody checked.
+// axisproof gate: the release gate. Runs each stage in order with a progress display, prints
+// a verdict table (stage, result, time, key figure) and exits 0 only when every stage PASSed.
+// A stage that could not run is NOT RUN, and NOT RUN fails the gate: a gate that skips
+// silently would pass firmware nobody checked. `--skip STAGE` only marks a stage NOT RUN.
+//
+// Stages (each one's output goes to out/gate/logs/<stage>.log):
+//   build-dev    dev preset (gcc-12, -Werror): everything, incrementally
+//   build-asan   asan preset (clang, ASan + UBSan)
+//   tests        ctest -L 'unit|property' on the asan build
+//   proofs       `axisproof prove` (NOT RUN while it is the placeholder)
+//   fuzz         ctest -L fuzz on the asan build (replays corpora and regressions, and the
+//                ClusterFuzzLite build.sh check), then every target for --fuzz-time seconds
+//                (fork mode, fuzz preset; the tree is left untouched, findings go to out/fuzz/)
+//   e2e          ctest -L e2e on the asan build (NOT RUN when there are no e2e tests)
+//   mutation     ci/mutate: every ci/mutants/*.patch must be killed
+//   coverage     ci/coverage tests: llvm-cov line + branch of core/ and protocol/, FAIL below
+//                90 % branch
+//   m4           ci/m4-build: Cortex-M4 static libraries, size table, symbol check
+// Then out/gate/report.md + report.html, --junit FILE, and the release artifact under
+// out/release/ (M4 libraries, size table, manifest.json / MANIFEST.md).
 #include "cli.hpp"
+#include "fuzz_run.hpp"
+#include "gate.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <map>
 #include <regex>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
+
+namespace fs = std::filesystem;
 
 namespace ap::cli {
 namespace {
 
-enum class Result { Pass, Fail, NotRun };
+using gate::Outcome;
+using gate::Result;
 
-struct Outcome {
-  Result result;
-  std::string key;  // the stage's key figure, or why it failed / did not run
-};
+constexpr double kMinBranchCoverage = 90.0;
 
 struct Stage {
-  const char* name;
-  std::function<Outcome()> run;
+  const char* id;    // for --skip
+  const char* name;  // in the table
+  std::function<Outcome(gate::Run&, std::string& log)> run;
 };
 
-const char* to_string(Result r) {
-  switch (r) {
-    case Result::Pass: return "PASS";
-    case Result::Fail: return "FAIL";
-    case Result::NotRun: return "NOT RUN";
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == '\n' || s.back() == ' ' || s.back() == '\r')) s.pop_back();
+  size_t i = 0;
+  while (i < s.size() && s[i] == ' ') ++i;
+  return s.substr(i);
+}
+
+std::map<std::string, std::string> read_kv(const std::string& path) {
+  std::map<std::string, std::string> kv;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto eq = line.find('=');
+    if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 1);
   }
-  return "?";
+  return kv;
 }
 
-Outcome build(const std::string& preset) {
-  if (!ensure_built(preset, {}, true)) return {Result::Fail, "build failed"};
-  return {Result::Pass, "preset " + preset};
+// Runs a shell command in the source dir, output (stdout + stderr) to `log`; lines matching
+// `echo` are shown indented, as progress. Returns the exit status.
+int run_logged(const std::string& command, const std::string& log, const std::string& echo = "") {
+  fs::create_directories(fs::path(log).parent_path());
+  std::ofstream out(log, std::ios::app);
+  out << "$ " << command << "\n";
+  out.flush();
+  std::fflush(stdout);
+  FILE* pipe = popen(("cd " + quote(source_dir()) + " && " + command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return 127;
+  const std::regex re(echo.empty() ? "$^" : echo);
+  char buf[8192];
+  std::string line;
+  while (std::fgets(buf, sizeof buf, pipe) != nullptr) {
+    line += buf;
+    if (line.back() != '\n') continue;
+    out << line;
+    out.flush();
+    line.pop_back();
+    if (!echo.empty() && std::regex_search(line, re)) {
+      std::printf("      %s\n", line.c_str());
+      std::fflush(stdout);
+    }
+    line.clear();
+  }
+  if (!line.empty()) out << line << "\n";
+  const int raw = pclose(pipe);
+  if (raw == -1) return 127;
+  if (WIFEXITED(raw)) return WEXITSTATUS(raw);
+  return 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
 }
 
-// Runs ctest on the asan build with a label regex; key figure = "N tests".
-Outcome ctest_stage(const std::string& labels) {
-  int status = 0;
-  const std::string out = run_capture("cd " + quote(source_dir()) + " && ctest --preset asan -L " + quote(labels) +
-                                          " --no-tests=error 2>&1",
-                                      &status);
+std::string log_path(const char* id) { return source_dir() + "/out/gate/logs/" + id + ".log"; }
+
+std::string self_exe() {
+  std::error_code ec;
+  const auto p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? build_dir("dev") + "/cli/axisproof" : p.string();
+}
+
+// ---- stages --------------------------------------------------------------------------
+
+std::map<std::string, bool> built_ok;
+
+Outcome build_stage(const std::string& preset, const std::string& log) {
+  std::string cmd;
+  if (!fs::exists(build_dir(preset) + "/CMakeCache.txt")) cmd = "cmake --preset " + preset + " && ";
+  cmd += "cmake --build --preset " + preset;
+  const int st = run_logged(cmd, log, R"(FAILED:|error:)");
+  built_ok[preset] = st == 0;
+  // Ninja's last progress line "[n/N]" tells how much was rebuilt.
+  const std::string text = slurp(log);
   std::smatch m;
-  std::string key;
-  if (std::regex_search(out, m, std::regex(R"((\d+)% tests passed, (\d+) tests? failed out of (\d+))"))) {
-    key = m[3].str() + " tests, " + m[2].str() + " failed";
-  } else {
-    key = "no tests ran";
+  std::string steps = "up to date";
+  std::string::const_iterator from = text.begin();
+  while (std::regex_search(from, text.end(), m, std::regex(R"(\[(\d+)/(\d+)\])"))) {
+    steps = m[2].str() + " build steps";
+    from = m.suffix().first;
   }
-  if (status != 0) {
-    std::fputs(out.c_str(), stderr);
-    return {Result::Fail, key};
-  }
-  return {Result::Pass, key};
+  if (st != 0) return {Result::Fail, "build failed (build/" + preset + ")"};
+  return {Result::Pass, "build/" + preset + ", " + steps};
 }
 
-Outcome missing(const char* why) { return {Result::NotRun, why}; }
+int count_tests(const std::string& preset, const std::string& labels) {
+  int st = 0;
+  const std::string out = run_capture("cd " + quote(source_dir()) + " && ctest --preset " + preset + " -N -L " + quote(labels) + " 2>/dev/null", &st);
+  std::smatch m;
+  if (std::regex_search(out, m, std::regex(R"(Total Tests: (\d+))"))) return std::stoi(m[1].str());
+  return 0;
+}
+
+Outcome ctest_stage(const std::string& labels, const std::string& junit, const std::string& log) {
+  if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
+  const int n = count_tests("asan", labels);
+  if (n == 0) return {Result::NotRun, "no tests labelled " + labels};
+  const int st = run_logged("ctest --preset asan -L " + quote(labels) + " --no-tests=error --output-junit " + quote(junit),
+                            log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
+  const std::string text = slurp(log);
+  std::smatch m;
+  std::string key = std::to_string(n) + " tests";
+  if (std::regex_search(text, m, std::regex(R"((\d+)% tests passed, (\d+) tests? failed out of (\d+))"))) {
+    key = m[3].str() + " tests, " + m[2].str() + " failed";
+  }
+  return {st == 0 ? Result::Pass : Result::Fail, key};
+}
+
+Outcome proofs_stage(gate::Run& run, const std::string& log) {
+  if (slurp(source_dir() + "/cli/cmd_prove.cpp").find("not available yet") != std::string::npos) {
+    return {Result::NotRun, "axisproof prove is still the placeholder (issue 7)"};
+  }
+  const int st = run_logged(quote(self_exe()) + " prove", log, R"(^\[\d+/\d+\])");
+  const std::string text = slurp(log);
+  if (text.find("not available yet") != std::string::npos) return {Result::NotRun, "axisproof prove not available yet"};
+  // The final table: a header line starting with "obligation", rows until a blank line.
+  std::istringstream in(text);
+  std::string line;
+  bool in_table = false;
+  int proved = 0, other = 0;
+  while (std::getline(in, line)) {
+    if (!in_table) {
+      if (line.rfind("obligation", 0) == 0 && line.find("result") != std::string::npos) in_table = true;
+      continue;
+    }
+    if (trim(line).empty()) break;
+    std::istringstream row(line);
+    std::string name, result, secs, method;
+    row >> name >> result >> secs;
+    std::getline(row, method);
+    run.details.proofs.push_back({name, result, secs, trim(method)});
+    (result == "PROVED" ? proved : other)++;
+  }
+  std::string key = std::to_string(proved + other) + " obligations, " + std::to_string(proved) + " proved";
+  if (proved + other == 0) key = st == 0 ? "prove passed (no table found)" : "prove failed (see log)";
+  return {st == 0 ? Result::Pass : Result::Fail, key};
+}
+
+int fuzz_seconds = 10;
+
+Outcome fuzz_stage(gate::Run& run, const std::string& log) {
+  if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
+  const auto listed = read_fuzz_targets(build_dir("asan"));
+  if (listed.empty()) return {Result::NotRun, "no fuzz targets (fuzz/<group>/ with ap_add_fuzz_target)"};
+  const int replays = count_tests("asan", "fuzz");
+  const int st = run_logged("ctest --preset asan -L fuzz --no-tests=error --output-junit " +
+                                quote(source_dir() + "/out/gate/junit-fuzz-replay.xml"),
+                            log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
+  if (st != 0) return {Result::Fail, "replay of corpora / regressions fails (" + std::to_string(replays) + " fuzz tests)"};
+  FuzzOptions o;
+  o.seconds = fuzz_seconds;
+  o.jobs = 2;
+  o.no_save = true;
+  bool ok = true;
+  const auto stats = run_fuzz(o, &ok);
+  int findings = 0;
+  long long min_rate = -1;
+  std::string slowest;
+  for (const auto& s : stats) {
+    findings += s.findings;
+    if (min_rate < 0 || s.exec_per_s < min_rate) {
+      min_rate = s.exec_per_s;
+      slowest = s.target;
+    }
+    run.details.fuzz.push_back({s.target, std::to_string(s.executions), std::to_string(s.exec_per_s),
+                                std::to_string(s.corpus_files), std::to_string(s.coverage), std::to_string(s.findings)});
+  }
+  std::string key = std::to_string(replays) + " replay tests; " + std::to_string(stats.size()) + " targets x " +
+                    std::to_string(fuzz_seconds) + " s, " + std::to_string(findings) + " findings";
+  if (!stats.empty()) key += ", slowest " + slowest + " " + std::to_string(min_rate) + " exec/s";
+  if (!ok) return {Result::Fail, key + " (a target could not run or build)"};
+  return {findings == 0 ? Result::Pass : Result::Fail, key + (findings ? " (reproducers in out/fuzz/<target>/findings/)" : "")};
+}
+
+Outcome e2e_stage(const std::string& log) {
+  if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
+  if (count_tests("asan", "e2e") == 0) return {Result::NotRun, "no end-to-end tests (ctest label e2e) yet"};
+  return ctest_stage("e2e", source_dir() + "/out/gate/junit-e2e.xml", log);
+}
+
+Outcome mutation_stage(gate::Run& run, const std::string& log) {
+  bool any = false;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(source_dir() + "/ci/mutants", ec)) any = any || e.path().extension() == ".patch";
+  if (!any) return {Result::NotRun, "no mutants in ci/mutants/"};
+  fs::remove(source_dir() + "/out/mutate/report.tsv", ec);
+  const int st = run_logged("ci/mutate", log, R"(^\[\d+/\d+\]|^mutate: (baseline|the unmutated|configuring|building))");
+  std::ifstream tsv(source_dir() + "/out/mutate/report.tsv");
+  std::string line;
+  std::getline(tsv, line);  // header
+  int killed = 0, total = 0;
+  std::vector<std::string> bad;
+  while (std::getline(tsv, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string part;
+    while (std::getline(ss, part, '\t')) f.push_back(part);
+    if (f.size() < 4) continue;
+    run.details.mutants.push_back(f);
+    ++total;
+    if (f[2].rfind("killed", 0) == 0) ++killed;
+    else bad.push_back(f[0] + " " + (f[2] == "SURVIVED" ? "SURVIVED" : "INVALID"));
+  }
+  const std::string text = slurp(log);
+  std::smatch m;
+  if (std::regex_search(text, m, std::regex(R"(mutation suite: ([^\n]*))"))) run.details.mutation_summary = m[1].str();
+  if (total == 0) return {st == 0 ? Result::Fail : Result::Fail, "runner failed before any mutant (baseline or build; see log)"};
+  std::string key = std::to_string(killed) + "/" + std::to_string(total) + " killed";
+  for (size_t i = 0; i < bad.size() && i < 3; ++i) key += (i ? ", " : "; ") + bad[i];
+  if (bad.size() > 3) key += ", ...";
+  return {st == 0 && killed == total ? Result::Pass : Result::Fail, key};
+}
+
+Outcome coverage_stage(gate::Run& run, const std::string& log) {
+  char thr[16];
+  std::snprintf(thr, sizeof thr, "%.0f", kMinBranchCoverage);
+  const int st = run_logged("ci/coverage tests --min-branch " + std::string(thr), log, R"(^coverage)");
+  const auto kv = read_kv(source_dir() + "/out/coverage/tests/summary.txt");
+  if (kv.count("branch_percent") == 0) return {Result::Fail, "no coverage figures (see log)"};
+  const std::string key = "branch " + kv.at("branch_percent") + " % (min " + thr + " %), line " + kv.at("line_percent") +
+                          " %, " + kv.at("files") + " files";
+  run.details.coverage_summary = "core/ + protocol/ from the whole test suite (cov preset): lines " + kv.at("line_percent") +
+                                 " % of " + kv.at("lines") + ", branches " + kv.at("branch_percent") + " % of " +
+                                 kv.at("branches") + "; the gate requires at least " + thr + " % branch coverage.";
+  std::ifstream rep(source_dir() + "/out/coverage/tests/report.txt");
+  std::string line;
+  const std::string src = source_dir() + "/";
+  while (std::getline(rep, line)) {
+    std::istringstream row(line);
+    std::vector<std::string> f;
+    std::string w;
+    while (row >> w) f.push_back(w);
+    if (f.size() != 13 || f[0] == "Filename") continue;
+    std::string file = f[0];
+    if (file.rfind(src, 0) == 0) file = file.substr(src.size());
+    run.details.coverage.push_back({file, f[7], f[9], f[10], f[12]});
+  }
+  return {st == 0 ? Result::Pass : Result::Fail, key};
+}
+
+Outcome m4_stage(gate::Run& run, const std::string& log) {
+  const int st = run_logged("ci/m4-build --out " + quote(source_dir() + "/out/release"), log, R"(^total|^flash|m4-build:)");
+  run.details.m4_size_md = slurp(source_dir() + "/out/release/m4-size.md");
+  const std::string txt = slurp(source_dir() + "/out/release/m4-size.txt");
+  std::smatch m;
+  std::string key = st == 0 ? "built" : "cross build or check failed (see log)";
+  if (std::regex_search(txt, m, std::regex(R"(flash (\d+) B of \d+ B \(([\d.]+)%\), RAM (\d+) B of \d+ B \(([\d.]+)%\))"))) {
+    key = "flash " + m[1].str() + " B (" + m[2].str() + " % of 1 MB), RAM " + m[3].str() + " B (" + m[4].str() + " % of 128 KB)";
+    if (st != 0) key += "; check failed";
+  }
+  const std::string text = slurp(log);
+  if (text.find("no core libraries are defined yet") != std::string::npos) return {Result::NotRun, "no core libraries yet"};
+  return {st == 0 ? Result::Pass : Result::Fail, key};
+}
+
+std::string now_utc() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
 
 }  // namespace
 
 void add_gate(CLI::App& app) {
   auto* sub = app.add_subcommand("gate", "Release gate on the bundled firmware core: every stage, a verdict table, exit 0 only on PASS");
+  static std::string junit;
+  static std::vector<std::string> skip;
+  sub->add_option("--junit", junit, "Also write the verdict as JUnit XML to FILE");
+  sub->add_option("--skip", skip, "Do not run STAGE (it is then NOT RUN, so the verdict is FAIL)")
+      ->check(CLI::IsMember({"build-dev", "build-asan", "tests", "proofs", "fuzz", "e2e", "mutation", "coverage", "m4"}));
+  sub->add_option("--fuzz-time", fuzz_seconds, "Seconds per fuzz target in the fuzz smoke stage (default 10)")
+      ->check(CLI::PositiveNumber);
   sub->final_callback([] {
+    const std::string src = source_dir();
+    std::error_code ec;
+    fs::remove_all(src + "/out/gate", ec);
+    fs::remove_all(src + "/out/release", ec);
+    fs::create_directories(src + "/out/gate/logs");
+    gate::Run run;
+    run.version = AP_VERSION;
+    run.date = now_utc();
+    int st = 0;
+    run.git_hash = trim(run_capture("git -C " + quote(src) + " rev-parse HEAD 2>/dev/null", &st));
+    if (run.git_hash.empty()) run.git_hash = "unknown";
+    else if (!trim(run_capture("git -C " + quote(src) + " status --porcelain --untracked-files=no 2>/dev/null | head -1", &st)).empty())
+      run.git_hash += " (with uncommitted changes)";
+
     const std::vector<Stage> stages = {
-        {"build (dev)", [] { return build("dev"); }},
-        {"build (asan)", [] { return build("asan"); }},
-        {"unit + property tests", [] { return ctest_stage("unit|property"); }},
-        {"proofs", [] { return missing("axisproof prove not built yet (issue 7)"); }},
-        {"fuzz smoke", [] { return missing("fuzz smoke stage not built yet (issue 8)"); }},
-        {"end-to-end scenarios", [] { return missing("DDS scenarios not built yet (issue 9)"); }},
-        {"mutation suite", [] { return missing("mutation runner not built yet (issue 10)"); }},
-        {"coverage", [] { return missing("coverage stage not built yet (issue 10)"); }},
-        {"cortex-m4 build", [] { return missing("cross build not set up yet (issue 10)"); }},
+        {"build-dev", "build (dev)", [](gate::Run&, std::string& l) { return build_stage("dev", l); }},
+        {"build-asan", "build (asan)", [](gate::Run&, std::string& l) { return build_stage("asan", l); }},
+        {"tests", "unit + property tests",
+         [](gate::Run&, std::string& l) { return ctest_stage("unit|property", source_dir() + "/out/gate/junit-tests.xml", l); }},
+        {"proofs", "proofs", [](gate::Run& r, std::string& l) { return proofs_stage(r, l); }},
+        {"fuzz", "fuzz smoke", [](gate::Run& r, std::string& l) { return fuzz_stage(r, l); }},
+        {"e2e", "end-to-end scenarios", [](gate::Run&, std::string& l) { return e2e_stage(l); }},
+        {"mutation", "mutation suite", [](gate::Run& r, std::string& l) { return mutation_stage(r, l); }},
+        {"coverage", "coverage", [](gate::Run& r, std::string& l) { return coverage_stage(r, l); }},
+        {"m4", "cortex-m4 build", [](gate::Run& r, std::string& l) { return m4_stage(r, l); }},
     };
-    struct Row {
-      std::string stage;
-      Outcome outcome;
-      double seconds;
-    };
-    std::vector<Row> rows;
-    bool pass = true;
+    const auto start = std::chrono::steady_clock::now();
+    run.pass = true;
     for (size_t i = 0; i < stages.size(); ++i) {
-      std::printf("[%zu/%zu] %s ...\n", i + 1, stages.size(), stages[i].name);
+      const auto& s = stages[i];
+      std::printf("[%zu/%zu] %s ...\n", i + 1, stages.size(), s.name);
       std::fflush(stdout);
-      const auto start = std::chrono::steady_clock::now();
-      Outcome o = stages[i].run();
-      rows.push_back({stages[i].name, o, seconds_since(start)});
-      std::printf("[%zu/%zu] %s: %s\n", i + 1, stages.size(), stages[i].name,
-                  to_string(o.result));
-      pass = pass && o.result == Result::Pass;
+      const auto t0 = std::chrono::steady_clock::now();
+      std::string log = log_path(s.id);
+      Outcome o;
+      if (std::find(skip.begin(), skip.end(), s.id) != skip.end()) {
+        o = {Result::NotRun, "skipped with --skip " + std::string(s.id)};
+        log.clear();
+      } else {
+        o = s.run(run, log);
+      }
+      const double secs = seconds_since(t0);
+      std::string rel;
+      if (!log.empty() && fs::exists(log)) rel = fs::relative(log, src).string();
+      run.rows.push_back({s.name, o, secs, rel});
+      std::printf("[%zu/%zu] %s: %s (%.1f s) %s\n", i + 1, stages.size(), s.name, gate::to_string(o.result), secs, o.key.c_str());
+      std::fflush(stdout);
+      run.pass = run.pass && o.result == Result::Pass;
     }
-    std::printf("\n%-24s %-8s %9s  %s\n", "stage", "result", "time", "key figure");
-    for (const auto& r : rows) {
-      std::printf("%-24s %-8s %8.1fs  %s\n", r.stage.c_str(), to_string(r.outcome.result), r.seconds,
-                  r.outcome.key.c_str());
+    run.seconds = seconds_since(start);
+    // SVG plots of the bundled scenarios, if `axisproof sim` left any.
+    if (fs::is_directory(src + "/out/sim", ec)) {
+      for (const auto& e : fs::recursive_directory_iterator(src + "/out/sim", ec)) {
+        if (e.path().extension() == ".svg") run.details.plots.push_back("../sim/" + fs::relative(e.path(), src + "/out/sim").string());
+      }
+      std::sort(run.details.plots.begin(), run.details.plots.end());
     }
-    std::printf("\nverdict: %s\n", pass ? "PASS" : "FAIL");
-    exit_status() = pass ? 0 : 1;
+    gate::print_table(run);
+    gate::write_reports(run, src + "/out/gate");
+    gate::write_manifest(run, src + "/out/release");
+    std::printf("report: out/gate/report.md, out/gate/report.html; release artifact: out/release/\n");
+    if (!junit.empty()) {
+      if (gate::write_junit(run, junit)) std::printf("JUnit XML: %s\n", junit.c_str());
+      else std::fprintf(stderr, "axisproof gate: cannot write %s\n", junit.c_str());
+    }
+    exit_status() = run.pass ? 0 : 1;
   });
 }
 

@@ -20,6 +20,7 @@
 # AP_FUZZ_ENGINE (set by .clusterfuzzlite/build.sh from $LIB_FUZZING_ENGINE): link flags of an
 # external fuzzing engine, used instead of -fsanitize=fuzzer.
 
+option(AP_CFL_CHECK "Register the ctest that runs .clusterfuzzlite/build.sh locally (clang builds)" ON)
 set(AP_CORE_FLAGS -fno-exceptions -fno-rtti)
 set(AP_CORE_LIBS "" CACHE INTERNAL "core libraries")
 
@@ -111,8 +112,10 @@ function(_ap_write_lists)
   endforeach()
   file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/core_libs.txt CONTENT "${_text}")
   # .clusterfuzzlite/build.sh must keep working with the standard OSS-Fuzz variables; this
-  # runs it the way ClusterFuzzLite would, with the local clang and libFuzzer.
-  if(AP_FUZZ AND NOT AP_FUZZ_ENGINE AND _lines)
+  # runs it the way ClusterFuzzLite would, with the local clang and libFuzzer (asan and fuzz
+  # presets; not in cov, and not in the mutation runner's build, which sets AP_CFL_CHECK=OFF).
+  if(AP_CFL_CHECK AND CMAKE_CXX_COMPILER_ID MATCHES "Clang" AND (AP_SANITIZE OR AP_FUZZ)
+     AND NOT AP_COVERAGE AND NOT AP_FUZZ_ENGINE AND _lines)
     add_test(NAME fuzz.clusterfuzzlite_build_sh
              COMMAND ${CMAKE_SOURCE_DIR}/ci/check-clusterfuzzlite ${CMAKE_BINARY_DIR}/cfl-check)
     set_tests_properties(fuzz.clusterfuzzlite_build_sh PROPERTIES LABELS fuzz TIMEOUT 900)
