@@ -57,6 +57,9 @@ int main(int argc, char** argv) {
   auto torn = ab;
   torn[1 + kCopyBase[1] + 10] ^= 0xFF;
   save(dir, "b_torn", torn);
+  auto stale = ab;  // newer copy B changed in range, CRC not updated: only the CRC rejects it
+  stale[1 + kCopyBase[1] + entry(ParamId::MaxAcceleration).offset] ^= 0x01;
+  save(dir, "b_stale_crc", stale);
   auto range = image(3);  // CRCs recomputed by the target
   put(range, 0, defaults(), 5);
   put(range, 1, other, 6);
