@@ -1,0 +1,180 @@
+// The scenario parser (protocol/dds, ap_scenario) and the bundled scenarios/ files.
+#include <gtest/gtest.h>
+#include <rapidcheck/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "ap/dds/scenario.hpp"
+
+namespace sc = ap::scenario;
+
+namespace {
+
+sc::Scenario without_lines(sc::Scenario s) {
+  for (auto& a : s.actions) a.line = 0;
+  for (auto& e : s.expectations) e.line = 0;
+  for (auto& f : s.faults) f.line = 0;
+  for (auto& st : s.setup) st.line = 0;
+  return s;
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    sc::parse(text, "t.scn");
+  } catch (const sc::ParseError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+const std::string kHead = "scenario t\nduration 10 s\n";
+
+}  // namespace
+
+TEST(dds_scenario, BundledScenariosParseAndRoundTrip) {
+  // issue 9 item 7: the bundled scenarios.
+  const std::set<std::string> expected{"absolute_20mm",  "manual_reversal", "accel_save_reboot",
+                                       "ihold_irun",     "endstop_hit",     "battery_charger_blocking",
+                                       "link_loss_jog",  "homing",          "faulty_link_jog",
+                                       "many_boards"};
+  std::set<std::string> found;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(AP_SOURCE_DIR) + "/scenarios")) {
+    if (entry.path().extension() != ".scn") continue;
+    SCOPED_TRACE(entry.path().string());
+    const sc::Scenario s = sc::parse_file(entry.path().string());
+    EXPECT_EQ(s.name, entry.path().stem().string()) << "the file name is the scenario name";
+    EXPECT_FALSE(s.title.empty());
+    EXPECT_FALSE(s.actions.empty());
+    EXPECT_FALSE(s.expectations.empty());
+    EXPECT_TRUE(std::is_sorted(s.actions.begin(), s.actions.end(),
+                               [](const auto& a, const auto& b) { return a.t_us < b.t_us; }));
+    const sc::Scenario again = sc::parse(sc::to_text(s), "printed");
+    EXPECT_EQ(without_lines(again), without_lines(s)) << sc::to_text(s);
+    found.insert(s.name);
+  }
+  EXPECT_EQ(found, expected);
+}
+
+TEST(dds_scenario, UnitsAreCanonical) {
+  const auto s = sc::parse(kHead +
+                           "at 1.5 s goto x 20 mm\nat +500 ms set accel 5 mm/s^2\nat 2 s set speed fast 0.01 m/s\n"
+                           "at 2 s battery 3.3 V\nat 3 s move y -250um\nfault drop 5 %\nfault delay 20 ms jitter 5 ms to_pc from 1 s to 2 s\n"
+                           "expect at 4 s x.pos == 20 mm tol 1 um\nexpect always x.speed <= 10 mm/s\n"
+                           "expect from 1 s to 2 s x.dir == +\nexpect end @0 gaps == 0\n",
+                           "t.scn");
+  ASSERT_EQ(s.actions.size(), 5U);
+  EXPECT_EQ(s.actions[0].t_us, 1'500'000);
+  EXPECT_EQ(s.actions[0].verb, sc::Verb::go_to);
+  EXPECT_EQ(s.actions[0].axis, 'x');
+  EXPECT_EQ(*s.actions[0].amount, (sc::Quantity{20000.0, sc::Dim::length}));
+  EXPECT_EQ(s.actions[1].t_us, 2'000'000);   // relative to the previous 'at'
+  EXPECT_EQ(*s.actions[1].amount, (sc::Quantity{5000.0, sc::Dim::accel}));
+  EXPECT_EQ(s.actions[2].word, "fast");
+  EXPECT_EQ(s.actions[2].amount->value, 10000.0);
+  EXPECT_EQ(s.actions[3].amount->value, 3300.0);
+  EXPECT_EQ(s.actions[4].amount->value, -250.0);
+  ASSERT_EQ(s.faults.size(), 2U);
+  EXPECT_EQ(s.faults[0].amount.value, 5.0);
+  EXPECT_EQ(s.faults[1].kind, sc::FaultKind::delay);
+  EXPECT_EQ(s.faults[1].dir, sc::Direction::to_pc);
+  EXPECT_EQ(s.faults[1].jitter->value, 5000.0);
+  EXPECT_EQ(*s.faults[1].to_us, 2'000'000);
+  ASSERT_EQ(s.expectations.size(), 4U);
+  EXPECT_EQ(s.expectations[0].tol->value, 1.0);
+  EXPECT_EQ(s.expectations[1].when, sc::When::always);
+  EXPECT_EQ(s.expectations[1].op, sc::Op::le);
+  EXPECT_EQ(std::get<std::string>(s.expectations[2].value), "+");
+  EXPECT_EQ(s.expectations[2].t2_us, 2'000'000);
+  EXPECT_FALSE(s.expectations[3].target.all);
+}
+
+TEST(dds_scenario, ErrorsNameTheLineAndTheProblem) {
+  EXPECT_EQ(error_of("duration 1 s\n"), "t.scn:1: a scenario file starts with 'scenario NAME'");
+  EXPECT_EQ(error_of("scenario t\n"), "t.scn:2: no 'duration'");
+  EXPECT_EQ(error_of(kHead + "at 1 s fly x\n"), "t.scn:3: unknown action 'fly'");
+  EXPECT_EQ(error_of(kHead + "at 1 s goto x 20 mm/s\n"),
+            "t.scn:3: target position: expected a length (um, mm, ...), got a speed (um/s, mm/s, ...)");
+  EXPECT_EQ(error_of(kHead + "at 1 s goto z 20 mm\n"), "t.scn:3: axis must be x or y, got 'z'");
+  EXPECT_EQ(error_of(kHead + "at 1 s goto x 20\n"),
+            "t.scn:3: target position: '20' needs a unit: a length (um, mm, ...)");
+  EXPECT_EQ(error_of(kHead + "at 2 s stop x\nat 1 s stop x\n"),
+            "t.scn:4: actions must be in time order (this one is before the previous 'at')");
+  EXPECT_EQ(error_of(kHead + "at 11 s stop x\n"), "t.scn:3: action after the end of the run");
+  EXPECT_EQ(error_of(kHead + "at 1 s @1 stop x\n"), "t.scn:3: board 1 does not exist (boards 1)");
+  EXPECT_EQ(error_of(kHead + "expect at 1 s x.pos == reached\n"),
+            "t.scn:3: subject x.pos needs a length (um, mm, ...)");
+  EXPECT_EQ(error_of(kHead + "expect at 1 s x.status < idle\n"), "t.scn:3: words compare with == or != only");
+  EXPECT_EQ(error_of(kHead + "expect at 1 s z.pos == 1 mm\n"), "t.scn:3: unknown subject 'z.pos'");
+  EXPECT_EQ(error_of(kHead + "fault drop 150 %\n"), "t.scn:3: fault rate above 100 %");
+  EXPECT_EQ(error_of(kHead + "at 1 s jog x +\nboards 4\n"), "t.scn:4: 'boards' must come before actions and expectations");
+  EXPECT_EQ(error_of(kHead + "title \"open\n"), "t.scn:3: unterminated string");
+  EXPECT_EQ(error_of(kHead + "at 1 s jog x + fast extra\n"), "t.scn:3: unexpected 'extra'");
+  EXPECT_EQ(error_of(kHead + "expect at 1 s x.pos == 2 mm tol 1 mm/s\n"),
+            "t.scn:3: tolerance: expected a length (um, mm, ...), got a speed (um/s, mm/s, ...)");
+}
+
+TEST(dds_scenario, CommentsBlankLinesAndQuotes) {
+  const auto s = sc::parse("# header comment\n\nscenario q   # trailing\ntitle \"a \\\"quoted\\\" # title\"\n"
+                           "duration 1 s\nat 0 s raw \"01000000 02000000\"\n",
+                           "q.scn");
+  EXPECT_EQ(s.title, "a \"quoted\" # title");
+  ASSERT_EQ(s.actions.size(), 1U);
+  EXPECT_EQ(s.actions[0].verb, sc::Verb::raw);
+  EXPECT_EQ(s.actions[0].word, "01000000 02000000");
+  EXPECT_EQ(without_lines(sc::parse(sc::to_text(s))), without_lines(s));
+}
+
+// Random scenarios survive print -> parse unchanged.
+RC_GTEST_PROP(dds_scenario, PrintParseIsIdentity, ()) {
+  sc::Scenario s;
+  s.name = "gen";
+  s.boards = *rc::gen::inRange<std::uint32_t>(1, 33);
+  s.duration_us = *rc::gen::inRange<std::int64_t>(1, 100'000) * 1000;
+  s.seed = *rc::gen::inRange<std::uint64_t>(0, 1000);
+  const auto n = *rc::gen::inRange<int>(0, 20);
+  std::int64_t t = 0;
+  for (int i = 0; i < n; ++i) {
+    t = std::min(s.duration_us, t + *rc::gen::inRange<std::int64_t>(0, 5000) * 1000);
+    sc::Action a;
+    a.t_us = t;
+    a.verb = *rc::gen::element(sc::Verb::go_to, sc::Verb::move, sc::Verb::stop, sc::Verb::jog, sc::Verb::set_accel,
+                               sc::Verb::battery, sc::Verb::save, sc::Verb::tmc);
+    const bool one = *rc::gen::arbitrary<bool>();
+    a.target = sc::Target{!one, one ? *rc::gen::inRange<std::uint32_t>(0, s.boards) : 0U};
+    const double um = static_cast<double>(*rc::gen::inRange(-200000, 200000)) / 4.0;
+    switch (a.verb) {
+      case sc::Verb::go_to:
+      case sc::Verb::move: a.axis = 'x'; a.amount = sc::Quantity{um, sc::Dim::length}; break;
+      case sc::Verb::stop: a.axis = 'y'; break;
+      case sc::Verb::jog: a.axis = 'x'; a.word = "-"; a.word2 = *rc::gen::element<std::string>("", "slow"); break;
+      case sc::Verb::set_accel: a.amount = sc::Quantity{std::abs(um), sc::Dim::accel}; break;
+      case sc::Verb::battery: a.amount = sc::Quantity{std::abs(um), sc::Dim::voltage}; break;
+      case sc::Verb::tmc: a.axis = 'y'; a.word = "IRUN"; a.amount = sc::Quantity{std::abs(std::floor(um)), sc::Dim::none}; break;
+      default: break;
+    }
+    s.actions.push_back(a);
+  }
+  for (int i = 0; i < n; ++i) {
+    sc::Expectation e;
+    e.when = *rc::gen::element(sc::When::at, sc::When::always, sc::When::between, sc::When::by, sc::When::end);
+    if (e.when == sc::When::at || e.when == sc::When::by || e.when == sc::When::between) {
+      e.t_us = *rc::gen::inRange<std::int64_t>(0, s.duration_us / 1000 + 1) * 1000;
+    }
+    if (e.when == sc::When::between) e.t2_us = s.duration_us;
+    e.subject = *rc::gen::element<std::string>("x.pos", "y.speed", "x.status", "gaps");
+    const auto dim = *sc::subject_dim(e.subject);
+    if (e.subject == "x.status") {
+      e.value = std::string("reached");
+    } else {
+      e.op = *rc::gen::element(sc::Op::eq, sc::Op::ne, sc::Op::lt, sc::Op::le, sc::Op::gt, sc::Op::ge);
+      e.value = sc::Quantity{static_cast<double>(*rc::gen::inRange(0, 1000000)) / 8.0, dim};
+      if (*rc::gen::arbitrary<bool>()) e.tol = sc::Quantity{0.5, dim};
+    }
+    s.expectations.push_back(e);
+  }
+  const sc::Scenario back = without_lines(sc::parse(sc::to_text(s), "gen"));
+  RC_ASSERT(back == s);
+}
