@@ -48,7 +48,7 @@ TEST(storage_power_cut, every_cut_point_of_a_save_gives_old_or_new) {
     {
       ParameterStore setup(chip->bus());
       setup.boot();
-      const int prior = *rc::gen::inRange(0, 4);  // varies which copy is active and what is stale
+      const int prior = ap::storage::test::pick(4);  // varies which copy is active and what is stale
       for (int i = 0; i < prior; ++i) RC_ASSERT(setup.save(gen_valid_set()).ok());
     }
     const ParameterSet old_set = boot_set(*chip);
@@ -124,7 +124,7 @@ RC_GTEST_PROP(storage_codec, decode_accepts_only_canonical_valid_records, ()) {
   RecordBytes r{};
   if (*rc::gen::arbitrary<bool>()) {
     encode_record(gen_valid_set(), *rc::gen::arbitrary<std::uint32_t>(), r);
-    const auto i = *rc::gen::inRange<std::size_t>(0, kCrcOffset);
+    const auto i = static_cast<std::size_t>(ap::storage::test::pick(static_cast<int>(kCrcOffset)));
     r[i] = *rc::gen::arbitrary<std::uint8_t>();
   } else {
     for (auto& b : r) b = *rc::gen::arbitrary<std::uint8_t>();
@@ -132,6 +132,7 @@ RC_GTEST_PROP(storage_codec, decode_accepts_only_canonical_valid_records, ()) {
   put_le(r, kCrcOffset, 4, crc32(std::span<const std::uint8_t>(r.data(), kCrcOffset)));
   const DecodeResult d = decode_record(r);
   RC_ASSERT(d.status != RecordStatus::BadCrc);
+  RC_TAG(d.status == RecordStatus::Valid ? "valid" : "bad value");
   if (d.status == RecordStatus::Valid) {
     RC_ASSERT(validate(d.set).ok());
     RecordBytes again{};
@@ -148,12 +149,16 @@ RC_GTEST_PROP(storage_store, set_parameter_accepts_exactly_the_valid_values, ())
   store.boot();
   const ParameterSet start = gen_valid_set();
   RC_ASSERT(store.save(start).ok());
-  const auto id = *rc::gen::inRange<int>(0, kItemCount + 2);
+  const int id = ap::storage::test::pick(static_cast<int>(kItemCount) + 2);
   std::int64_t value = 0;
   if (id < static_cast<int>(kItemCount)) {
     const MapEntry& e = kItemMap[static_cast<std::size_t>(id)];
-    value = *rc::gen::oneOf(rc::gen::inRange<std::int64_t>(e.min - 3, e.max + 4),
-                            rc::gen::inRange<std::int64_t>(e.min, e.max + 1));
+    using ap::storage::test::uniform;
+    switch (ap::storage::test::pick(3)) {
+      case 0: value = uniform(e.min - 3, e.min + 3); break;  // around each bound
+      case 1: value = uniform(e.max - 3, e.max + 3); break;
+      default: value = uniform(e.min, e.max); break;
+    }
   } else {
     value = *rc::gen::arbitrary<std::int32_t>();
   }
@@ -168,6 +173,7 @@ RC_GTEST_PROP(storage_store, set_parameter_accepts_exactly_the_valid_values, ())
   }
   const SaveResult r = store.set_parameter(static_cast<std::uint8_t>(id), value);
   RC_ASSERT(r.ok() == expect_ok);
+  RC_TAG(expect_ok ? "accepted" : "refused");
   if (expect_ok) {
     RC_ASSERT(store.current() == expected);
     RC_ASSERT(boot_set(*chip) == expected);

@@ -11,15 +11,22 @@
 
 namespace ap::storage::test {
 
+// RapidCheck's inRange leans towards its lower bound while the size is small; these draw
+// evenly so mid-range values and later branches are reached from the first case on.
+inline int pick(int n) { return *rc::gen::resize(100, rc::gen::inRange(0, n)); }
+inline std::int64_t uniform(std::int64_t lo, std::int64_t hi_inclusive) {
+  return *rc::gen::resize(100, rc::gen::inRange<std::int64_t>(lo, hi_inclusive + 1));
+}
+
 // A value for one item: its bounds often, uniform otherwise; powers of two for microsteps.
 inline std::int64_t gen_item_value(const MapEntry& e) {
   if (e.rule == Rule::PowerOfTwo) {
-    return std::int64_t{1} << *rc::gen::inRange(0, 9);
+    return std::int64_t{1} << pick(9);
   }
-  switch (*rc::gen::inRange(0, 4)) {
+  switch (pick(4)) {
     case 0: return e.min;
     case 1: return e.max;
-    default: return *rc::gen::inRange<std::int64_t>(e.min, e.max + 1);
+    default: return uniform(e.min, e.max);
   }
 }
 
