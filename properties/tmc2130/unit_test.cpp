@@ -191,6 +191,42 @@ TEST(tmc2130_driver, reset_is_detected_and_every_shadow_rewritten) {
   EXPECT_TRUE(b.chip_matches_shadows());
 }
 
+// The supply bounces: a second reset lands in the middle of the re-initialisation. The
+// driver must notice (GSTAT is cleared before the rewrite) and go round again.
+TEST(tmc2130_driver, reset_during_reinit_is_not_lost) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  ASSERT_TRUE(b.driver.set<Field::IHOLD_IRUN_IRUN>(12));
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_TOFF>(4));
+  b.device.power_cycle();
+  b.device.power_cycle_after(8);  // inside the rewrite of ~20 registers
+  ASSERT_TRUE(b.driver.check_reset());
+  EXPECT_TRUE(b.chip_matches_shadows());
+  EXPECT_EQ(b.device.chip_register(Reg::GSTAT), 0u);
+}
+
+// Every write of IHOLD_IRUN during re-init is followed by another reset: bounded rounds,
+// then a typed error instead of an endless loop.
+struct ResetOnIholdIrun {
+  Device device;
+  static bool spi(void* context, const chip::Datagram& tx, chip::Datagram& rx) {
+    auto* self = static_cast<ResetOnIholdIrun*>(context);
+    rx = self->device.transfer(tx);
+    const auto req = chip::decode_request(tx);
+    if (req.write && req.address == chip::address(Reg::IHOLD_IRUN)) self->device.power_cycle_after(2);
+    return true;
+  }
+};
+
+TEST(tmc2130_driver, chip_that_keeps_resetting_is_reported) {
+  ResetOnIholdIrun rig;
+  chip::Driver d(chip::SpiPort{&ResetOnIholdIrun::spi, &rig});
+  const auto r = d.init();
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error(), chip::Error::ChipKeepsResetting);
+  EXPECT_EQ(rig.device.writes_of(Reg::IHOLD_IRUN), chip::Driver::kMaxWriteAttempts);
+}
+
 // A reset seen during the read of a readable register's RMW must not make the reset
 // contents the base of the write.
 TEST(tmc2130_driver, reset_during_readable_rmw_keeps_other_fields) {

@@ -44,22 +44,30 @@ Result<SpiStatus> Driver::write_verified(Reg reg, std::uint32_t value) {
 }
 
 Result<SpiStatus> Driver::restore() {
-  // Every writable register, in address order, from the shadow; the chip lost them all.
   restoring_ = true;
-  for (const auto& r : kRegisters) {
-    if (!writable(r.access)) continue;
-    const auto w = write_verified(r.reg, shadow_[index_of(r.reg)]);
-    if (!w) {
-      restoring_ = false;
-      return w;
+  const auto done = [this](Result<SpiStatus> r) {
+    restoring_ = false;
+    return r;
+  };
+  for (unsigned round = 0; round < kMaxWriteAttempts; ++round) {
+    // Clear the flag before rewriting, so a reset during the rewrite shows up again below.
+    const auto cleared = read_chip(Reg::GSTAT);
+    if (!cleared) return done(cleared.error());
+    // Every writable register, in address order, from the shadow; the chip lost them all.
+    for (const auto& r : kRegisters) {
+      if (!writable(r.access)) continue;
+      const auto w = write_verified(r.reg, shadow_[index_of(r.reg)]);
+      if (!w) return done(w);
+    }
+    const auto gstat = read_chip(Reg::GSTAT);
+    if (!gstat) return done(gstat.error());
+    if (field_get(*gstat, Field::GSTAT_reset) == 0) {
+      reset_seen_ = false;
+      ++resets_recovered_;
+      return done(last_status_);
     }
   }
-  const auto gstat = read_chip(Reg::GSTAT);  // clears the reset flag on the chip
-  restoring_ = false;
-  if (!gstat) return gstat.error();
-  reset_seen_ = false;
-  ++resets_recovered_;
-  return last_status_;
+  return done(Error::ChipKeepsResetting);
 }
 
 Result<SpiStatus> Driver::finish(Result<SpiStatus> r) {

@@ -45,6 +45,7 @@ chip::Datagram Device::transfer(const chip::Datagram& mosi) {
     latch_ = read_view(req.address);
     if (idx && chip::kRegisters[*idx].access == chip::Access::RC) regs_[*idx] = 0;
   }
+  if (power_cycle_in_ > 0 && --power_cycle_in_ == 0) power_cycle();
   return miso;
 }
 

@@ -25,7 +25,8 @@ struct SpiPort {
 
 class Driver {
  public:
-  // A readable register that reads back wrong this many times in a row is a driver fault.
+  // A readable register that reads back wrong this many times in a row is a driver fault;
+  // the same bound limits re-initialisation rounds when the chip resets during one.
   static constexpr unsigned kMaxWriteAttempts = 3;
 
   explicit Driver(SpiPort port);

@@ -15,6 +15,7 @@ enum class Error : std::uint8_t {
   DuplicateField,     // batch names the same field twice (ambiguous order)
   BusFailure,         // the SPI transfer function reported a failure
   ReadbackMismatch,   // a readable register kept reading back differently: driver fault
+  ChipKeepsResetting, // the chip reset again during every re-initialisation attempt
   CurrentOutOfRange,  // current equation input outside its documented range
   MalformedDatagram,  // decoder input of the wrong length
 };
@@ -29,6 +30,7 @@ constexpr std::string_view error_name(Error e) {
     case Error::DuplicateField: return "duplicate field";
     case Error::BusFailure: return "SPI bus failure";
     case Error::ReadbackMismatch: return "read-back mismatch (driver fault)";
+    case Error::ChipKeepsResetting: return "chip keeps resetting during re-init";
     case Error::CurrentOutOfRange: return "current out of range";
     case Error::MalformedDatagram: return "malformed datagram";
   }

@@ -34,6 +34,10 @@ class Device {
   // flags such as drv_err.
   void set_input(chip::Reg reg, std::uint32_t value);
 
+  // Fault injection: the chip loses power again after `transfers` more transfers
+  // (a supply that bounces); 0 disarms.
+  void power_cycle_after(unsigned transfers) { power_cycle_in_ = transfers; }
+
   // Fault injection: the next `count` writes to `reg` store the value XOR `flip` (a bad
   // bit on MOSI), so read-back verification sees a mismatch.
   void corrupt_writes(chip::Reg reg, std::uint32_t flip, unsigned count);
@@ -61,6 +65,7 @@ class Device {
   chip::Reg corrupt_reg_ = chip::Reg::GCONF;
   std::uint32_t corrupt_flip_ = 0;
   unsigned corrupt_count_ = 0;
+  unsigned power_cycle_in_ = 0;
   std::vector<Access> log_;
 };
 
