@@ -42,9 +42,17 @@ double seconds(int64_t t_us) { return static_cast<double>(t_us) / 1e6; }
 TEST(AxisGolden, AbsoluteMove20mm) {
   const std::string path = trace_path("axis-abs-20mm");
   const std::array<int32_t, 2> accel_um = {5000, 20000};
+  int64_t steps_total = 0;
+  int64_t edges_total = 0;
+  int64_t squeezed = 0;
   {
     ap::sim::TraceWriter w(path);
     ASSERT_TRUE(w.ok()) << path;
+    // STEP edges at the times the quantised timer (step_timer) would emit them.
+    ap::sim::StepWriter sw(std::string(AP_SOURCE_DIR) + "/out/traces/axis-abs-20mm/steps.csv");
+    ASSERT_TRUE(sw.ok());
+    std::array<ap::sim::StepClock, 2> clk{};
+    std::array<int64_t, 2> last_edge{-1, -1};
     std::array<Config, 2> cfg{config_from_wire(100, 10'000, accel_um[0]), config_from_wire(100, 10'000, accel_um[1])};
     std::array<State, 2> st{};
     const int32_t target = target_to_usteps(20'000, 0, 200'000, kMech).value;
@@ -63,11 +71,27 @@ TEST(AxisGolden, AbsoluteMove20mm) {
           const StepResult r = step(st[static_cast<size_t>(a)], in, cfg[static_cast<size_t>(a)]);
           st[static_cast<size_t>(a)] = r.state;
           out = r.out;
+          std::vector<int64_t> edges;
+          clk[static_cast<size_t>(a)].tick((tick - 1) * kTickUs * 1000, out, edges);
+          for (const int64_t e : edges) {
+            ASSERT_GE(e, last_edge[static_cast<size_t>(a)]);
+            ASSERT_LT(e, tick * kTickUs * 1000);
+            last_edge[static_cast<size_t>(a)] = e;
+          }
+          sw.edges(a == 0 ? 'X' : 'Y', out.dir, edges);
+          steps_total += out.steps;
+          edges_total += static_cast<int64_t>(edges.size());
         }
         w.row(tick * kTickUs, a == 0 ? 'X' : 'Y', st[static_cast<size_t>(a)], in, out);
       }
     }
+    squeezed = clk[0].squeezed() + clk[1].squeezed();
   }
+  EXPECT_EQ(edges_total, steps_total);
+  EXPECT_EQ(steps_total, 2 * 32000);
+  // Pulses the core wanted but the timer period could not fit before the tick's end.
+  RecordProperty("squeezed_edges", std::to_string(squeezed));
+  EXPECT_LE(squeezed * 1000, steps_total) << squeezed;
   std::vector<ap::sim::TraceRow> rows;
   ASSERT_TRUE(ap::sim::read_trace(path, rows));
   for (int a = 0; a < 2; ++a) {

@@ -565,3 +565,29 @@ TEST(AxisDistance, DiscreteNeverExceedsContinuous) {
     }
   }
 }
+
+// Regression (found by AxisStateful): Home issued while jogging fast toward min with a homing
+// travel shorter than the stopping distance used to stop at the homing bound at full speed.
+TEST(AxisHoming, HomeWhileMovingFastBrakesPastTheBound) {
+  Config c;
+  c.home_travel = 1000;
+  State s;  // unhomed
+  run(s, c, Input{{CmdKind::Jog, -1, 1, 0}}, 2500);
+  ASSERT_EQ(s.v, c.v_fast * kSpeedScale);
+  Input in{{CmdKind::Home, 0, 0, 0}};
+  bool failed = false;
+  for (int t = 0; t < 5000 && !failed; ++t) {
+    const StepResult r = step(s, in, c);
+    in.cmd = Command{};
+    if (r.state.v == 0 && s.v != 0) {
+      ASSERT_LE(r.out.step_speed, c.v_start * kSpeedScale) << t;
+      ASSERT_TRUE(s.v <= c.v_start * kSpeedScale || s.v - r.out.step_speed <= c.accel) << t;
+    } else if (r.state.v != 0) {
+      ASSERT_LE(std::abs(r.state.v - s.v), c.accel) << t;
+    }
+    failed = r.out.error == Error::HomeFailed;
+    s = r.state;
+  }
+  EXPECT_TRUE(failed);
+  EXPECT_EQ(s.phase, Phase::Stop);
+}

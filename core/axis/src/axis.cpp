@@ -34,7 +34,7 @@ struct Goal {
   int8_t dir = 0;        // 0: come to a stop
   int32_t pr_fine = 0;   // requested speed PR, fine units
   int32_t bound = 0;     // the point motion in `dir` must stop at (target or limit)
-  bool pass_ok = false;  // the bound may be overrun at > start speed (a retarget too close)
+  bool pass_ok = false;  // the bound may be overrun above the start speed (set too close)
 };
 
 Goal goal_of(const State& s, const Input& in, const Config& c) {
@@ -56,6 +56,9 @@ Goal goal_of(const State& s, const Input& in, const Config& c) {
       g.dir = (s.pos > s.target && motion_allowed(s, in, c, -1)) ? int8_t{-1} : int8_t{0};
       g.pr_fine = c.v_slow * kSpeedScale;
       g.bound = s.target;
+      // The homing bound only says "give up here"; a Home issued while moving fast may overrun
+      // it while braking (the position is unknown anyway, the endstops still guard).
+      g.pass_ok = true;
       break;
     case Mode::Idle:
     default:
@@ -392,9 +395,7 @@ StepResult step(const State& s0, const Input& in, const Config& c) {
     if (cls != Class::Halt) {
       // Steps of this tick, compared against the stop points here where they are emitted (G9).
       const int64_t raw = (static_cast<int64_t>(s.frac) + v_next) / kDist;
-      const int64_t d_hard = (static_cast<int64_t>(s.mode == Mode::Home && s.dir < 0 ? s.target
-                                                                                    : hard_bound(s, c, s.dir)) -
-                              s.pos) * s.dir;
+      const int64_t d_hard = (static_cast<int64_t>(hard_bound(s, c, s.dir)) - s.pos) * s.dir;
       const int64_t d_goal =
           g.dir == s.dir ? (static_cast<int64_t>(g.bound) - s.pos) * s.dir : std::numeric_limits<int64_t>::max();
       if (g.dir == s.dir && raw >= d_goal && (v_next <= s_fine || !g.pass_ok)) {

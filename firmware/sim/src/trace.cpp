@@ -1,5 +1,8 @@
 #include "sim/trace.hpp"
 
+#include "core/axis/step_timer.hpp"
+
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -87,6 +90,61 @@ bool read_trace(const std::string& path, std::vector<TraceRow>& rows) {
     }
   }
   return true;
+}
+
+}  // namespace ap::sim
+
+
+namespace ap::sim {
+
+namespace {
+constexpr uint64_t kClkPerTick = static_cast<uint64_t>(ap::axis::kTimerClockHz) / ap::axis::kTicksPerSecond;
+constexpr int64_t kNsPerClk_num = 25;  // 1 clock = 12.5 ns = 25/2 ns
+constexpr int64_t kNsPerClk_den = 2;
+}  // namespace
+
+void StepClock::tick(int64_t t0_ns, const ap::axis::Output& out, std::vector<int64_t>& edges_ns) {
+  if (out.steps <= 0 || out.step_speed <= 0) {
+    // Timer stopped (or no pulse): the next start begins a fresh period.
+    since_edge_clk_ = out.step_speed > 0 ? since_edge_clk_ + kClkPerTick : 0;
+    return;
+  }
+  // Rounded up, so the realised frequency is never below the core's fine speed.
+  const uint32_t f_hz = static_cast<uint32_t>(
+      std::max(1, (out.step_speed + ap::axis::kSpeedScale - 1) / ap::axis::kSpeedScale));
+  const auto t = ap::axis::step_timer(f_hz);
+  period_ = t ? ap::axis::timer_period_clocks(*t) : 2;
+  // First edge one period after the previous edge (or at once if that already passed).
+  uint64_t at = period_ > since_edge_clk_ ? period_ - since_edge_clk_ : 0;
+  uint64_t last = 0;
+  for (int32_t i = 0; i < out.steps; ++i) {
+    uint64_t e = at + static_cast<uint64_t>(i) * period_;
+    if (e >= kClkPerTick) {
+      e = kClkPerTick - 1;
+      ++squeezed_;
+    }
+    last = e;
+    edges_ns.push_back(t0_ns + static_cast<int64_t>(e) * kNsPerClk_num / kNsPerClk_den);
+  }
+  since_edge_clk_ = kClkPerTick - last;
+}
+
+StepWriter::StepWriter(const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(p.parent_path(), ec);
+  }
+  out_.open(path, std::ios::trunc);
+  if (out_) {
+    out_ << "t_ns,axis,dir\n";
+  }
+}
+
+void StepWriter::edges(char axis, int dir, const std::vector<int64_t>& edges_ns) {
+  for (const int64_t e : edges_ns) {
+    out_ << e << ',' << axis << ',' << dir << '\n';
+  }
 }
 
 }  // namespace ap::sim

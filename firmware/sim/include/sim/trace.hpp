@@ -54,3 +54,37 @@ class TraceWriter {
 [[nodiscard]] bool read_trace(const std::string& path, std::vector<TraceRow>& rows);
 
 }  // namespace ap::sim
+
+namespace ap::sim {
+
+// STEP edge times as the quantised timer produces them (issue 6 item 4). The core decides how
+// many pulses go out in a tick; the timer, programmed by step_timer() for the tick's speed,
+// spaces them (PSC+1)(ARR+1) clocks of 80 MHz apart, continuing from the previous edge. If the
+// core asks for more pulses than fit before the tick ends (it can be ahead by one pulse: the
+// realised frequency rounds up, the accumulator does not), the surplus goes out at the tick end
+// and `squeezed` counts it.
+class StepClock {
+ public:
+  // t0_ns: start of the tick. Appends the edge times (ns) of out.steps pulses to `edges_ns`.
+  void tick(int64_t t0_ns, const ap::axis::Output& out, std::vector<int64_t>& edges_ns);
+  [[nodiscard]] int64_t squeezed() const { return squeezed_; }
+  [[nodiscard]] uint64_t period_clocks() const { return period_; }
+
+ private:
+  uint64_t since_edge_clk_ = 0;  // timer clocks from the last edge to the start of this tick
+  uint64_t period_ = 0;
+  int64_t squeezed_ = 0;
+};
+
+// steps.csv: one row per STEP edge: t_ns,axis,dir
+class StepWriter {
+ public:
+  explicit StepWriter(const std::string& path);
+  [[nodiscard]] bool ok() const { return static_cast<bool>(out_); }
+  void edges(char axis, int dir, const std::vector<int64_t>& edges_ns);
+
+ private:
+  std::ofstream out_;
+};
+
+}  // namespace ap::sim
