@@ -215,6 +215,9 @@ struct Harness {
   }
 
   void power_cut_op(Reader& r) {
+    // Let bytes still queued from earlier ops be handled first, so the only FRAM write in
+    // the cut tick is the one this op asks for (the ring drains 4 frame events per tick).
+    ticks_n(static_cast<std::int64_t>(kRxCapacity / kMaxEchoesPerCycle), false);
     const std::size_t cut = static_cast<std::size_t>(r.u8()) * 2U;
     const std::int32_t accel = 1000 + r.u8() * 400;
     const storage::ParameterSet before = rig->board->store().current();
