@@ -18,7 +18,7 @@ namespace {
 std::size_t count_rising(const std::vector<std::pair<std::uint64_t, char>>& tr) {
   std::size_t n = 0;
   for (std::size_t i = 1; i < tr.size(); ++i) {
-    n += tr[i - 1].second == '0' && tr[i].second == '1' ? 1 : 0;
+    n += tr[i - 1].second == '0' && tr[i].second == '1' ? 1U : 0U;
   }
   return n;
 }
@@ -250,7 +250,7 @@ TEST(waveform_svg, MotionPlotIsWellFormedWithAllSeries) {
   ASSERT_EQ(svg.find_all("title").size(), 1U);
   const auto panels = svg.find_all("g");
   std::size_t n_panels = 0;
-  for (const auto* g : panels) n_panels += g->attrs.count("class") && g->attrs.at("class") == "panel" ? 1 : 0;
+  for (const auto* g : panels) n_panels += g->attrs.count("class") != 0U && g->attrs.at("class") == "panel" ? 1U : 0U;
   EXPECT_EQ(n_panels, 2U);
   const auto polys = svg.find_all("polyline");
   ASSERT_EQ(polys.size(), 6U);
@@ -263,7 +263,9 @@ TEST(waveform_svg, MotionPlotIsWellFormedWithAllSeries) {
       EXPECT_LE(pts[i].first, x0 + w);
       EXPECT_GE(pts[i].second, y0);
       EXPECT_LE(pts[i].second, y0 + h);
-      if (i > 0) EXPECT_GE(pts[i].first, pts[i - 1].first);
+      if (i > 0) {
+        EXPECT_GE(pts[i].first, pts[i - 1].first);
+      }
     }
   }
   // The position of a 20 mm move ends at the top of its panel, the speed at the bottom.

@@ -76,8 +76,8 @@ std::vector<std::size_t> decimate(const Series& s, double x0, double sx, std::si
   std::vector<std::size_t> keep;
   const std::size_t n = s.x.size();
   if (n <= max_points) {
-    keep.resize(n);
-    for (std::size_t i = 0; i < n; ++i) keep[i] = i;
+    keep.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) keep.push_back(i);
     return keep;
   }
   std::size_t i = 0;

@@ -133,7 +133,10 @@ class LineParser {
     std::string w = next(what);
     if (std::find(options.begin(), options.end(), w) == options.end()) {
       std::string list;
-      for (auto o : options) list += (list.empty() ? "" : "|") + std::string(o);
+      for (auto o : options) {
+        if (!list.empty()) list += '|';
+        list.append(o);
+      }
       fail(std::string(what) + " must be " + list + ", got '" + w + "'");
     }
     return w;
@@ -234,7 +237,7 @@ Target target(LineParser& p, const Scenario& s) {
     std::uint32_t n = 0;
     const auto r = std::from_chars(tok.data() + 1, tok.data() + tok.size(), n);
     if (r.ec != std::errc() || r.ptr != tok.data() + tok.size()) p.fail("bad board selector '" + tok + "'");
-    if (n >= s.boards) p.fail("board " + std::to_string(n) + " does not exist (boards " + std::to_string(s.boards) + ")");
+    if (n >= s.boards) p.fail(std::string("board ").append(std::to_string(n)).append(" does not exist (boards ").append(std::to_string(s.boards)).append(")"));
     t.all = false;
     t.board = n;
   }
@@ -243,7 +246,10 @@ Target target(LineParser& p, const Scenario& s) {
 
 Action action(LineParser& p, Action a) {
   std::string v = p.next("an action");
-  if (v == "set" || v == "link") v += " " + p.next("the rest of the action");
+  if (v == "set" || v == "link") {
+    v += ' ';
+    v += p.next("the rest of the action");
+  }
   const auto it = std::find_if(kVerbs.begin(), kVerbs.end(), [&](const Verbs& x) { return x.name == v; });
   if (it == kVerbs.end()) p.fail("unknown action '" + v + "'");
   a.verb = it->verb;
@@ -577,7 +583,7 @@ std::string q(const Quantity& x) {
   return fmt_double(x.value) + (u.empty() ? "" : " " + u);
 }
 std::string tm(std::int64_t us) { return fmt_double(static_cast<double>(us) / 1e6) + " s"; }
-std::string tg(const Target& t) { return t.all ? "" : "@" + std::to_string(t.board) + " "; }
+std::string tg(const Target& t) { return t.all ? std::string() : std::string("@").append(std::to_string(t.board)).append(" "); }
 std::string quoted(const std::string& s) {
   std::string o = "\"";
   for (const char c : s) {
