@@ -88,12 +88,13 @@ TEST(BoardBlock, ChargerBlocksWithDecelerationAndUnblockClearsTargets) {
     const auto& s = r.ax(Axis::X);
     EXPECT_LE(s.v, prev_v);  // brakes, never speeds up
     EXPECT_LE(prev_v - s.v, r.board->axis_config(Axis::X).accel + r.board->axis_config(Axis::X).v_start * axis::kSpeedScale);
-    if (stopped) EXPECT_EQ(r.motor[0].steps, 0);
+    if (stopped) {
+      EXPECT_EQ(r.motor[0].steps, 0);
+    }
     stopped = stopped || s.v == 0;
     prev_v = s.v;
   }
   EXPECT_TRUE(stopped);
-  EXPECT_GT(prev_v - v_top, -v_top - 1);
   EXPECT_EQ(r.board->main_state(), MainState::Blocked);
   EXPECT_EQ(r.board->block(), Block::Charger);
   ASSERT_TRUE(r.last_echo().has_value());
@@ -177,14 +178,15 @@ TEST(BoardWatchdog, SilenceStopsAJogWithDecelerationAndMalformedFramesDoNotRefre
   // ...corrupted ones do not.
   auto bad = Rig::bytes_of(Rig::frame_of(++r.seq, C::Jog, 2, C::Nop, 0));
   bad[codec::kCommandCrcOffset] = bad[codec::kCommandCrcOffset] == 'A' ? 'B' : 'A';
-  int t = 0;
-  const int last_valid = 0;
-  for (; t < 1000 && r.ax(Axis::X).mode == axis::Mode::Jog; ++t) {
+  r.send(C::Jog, 2);
+  r.tick();
+  int t = 0;  // ticks since the tick of the last valid frame
+  while (t < 1000 && r.ax(Axis::X).mode == axis::Mode::Jog) {
     if (t % 50 == 0) r.send_raw(bad);
     r.tick();
+    ++t;
   }
-  EXPECT_GE(t - last_valid, 200);  // still jogging at least 2 periods after the last good frame
-  EXPECT_LE(t, 300 + 1);
+  EXPECT_EQ(t, static_cast<int>(axis::kLinkTimeoutTicks));  // 3 x 100 ms, not one tick less or more
   EXPECT_EQ(r.board->counters().watchdog_expiries, 1U);
   const std::int32_t v = r.ax(Axis::X).v;
   EXPECT_GT(v, 0);  // ramped stop: still moving right after the expiry
@@ -199,7 +201,6 @@ TEST(BoardMalformed, RejectedFrameChangesOnlyCountersAndGetsATypedEcho) {
   Rig r;
   r.boot();
   jog_for(r, Axis::X, 1, 150);
-  const auto before_x = r.ax(Axis::X);
   const auto before_params = r.board->store().current();
   const auto seq = r.board->last_seq();
   const auto k0 = r.board->counters();
@@ -225,7 +226,6 @@ TEST(BoardMalformed, RejectedFrameChangesOnlyCountersAndGetsATypedEcho) {
   const auto k1 = r.board->counters();
   EXPECT_EQ(k1.framer.rejected_frames, k0.framer.rejected_frames + 1);
   EXPECT_EQ(k1.dispatched_frames, k0.dispatched_frames);
-  (void)before_x;
 }
 
 TEST(BoardParams, SaveRebootReloadAndConvertedToMicrosteps) {
