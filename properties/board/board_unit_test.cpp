@@ -261,6 +261,27 @@ TEST(BoardParams, InvalidParameterIsRefusedAndNothingIsWritten) {
   EXPECT_EQ(r.board->store().current(), storage::defaults());
 }
 
+TEST(BoardParams, MotionParametersOnlyAtRestCurrentsAnytime) {
+  Rig r;
+  r.boot();
+  r.send(C::Jog, 2);
+  r.tick(50);
+  ASSERT_GT(r.ax(Axis::X).v, 0);
+  r.send(C::Nop, 0, C::SetAccel, 1);  // would leave the moving X axis almost without brakes
+  r.tick();
+  EXPECT_EQ(r.last_echo()->y.status, S::CommandRefused);
+  EXPECT_EQ(r.board->axis_config(Axis::X).accel, 32000);
+  EXPECT_EQ(r.board->store().current(), storage::defaults());
+  r.send(C::SetIrun, 20);
+  r.tick();
+  EXPECT_EQ(r.board->store().current().run_current_cs, 20);
+  r.send(C::Stop, 0);
+  r.tick(1000);
+  r.send(C::SetAccel, 1);
+  r.tick();
+  EXPECT_EQ(r.board->axis_config(Axis::X).accel, 2);
+}
+
 TEST(BoardParams, StorageFaultShowsInTheEchoAndKeepsThePreviousSet) {
   Rig r;
   r.boot();

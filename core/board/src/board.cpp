@@ -489,9 +489,12 @@ HandlerStatus Board::set_parameter(Axis a, c::CommandId id, st::ParamId pid, std
   const Derived d = derive(next);
   if (!d.ok) return refuse(a, id);
   const bool mechanics = pid == st::ParamId::LeadPitch || pid == st::ParamId::StepsPerRev || pid == st::ParamId::Microsteps;
-  // The step counters count microsteps of the old mechanics: changing them under a moving
-  // carriage would make position and target meaningless, so only at rest.
-  if (mechanics && (moving(axes_[0]) || moving(axes_[1]))) return refuse(a, id);
+  const bool currents = pid == st::ParamId::RunCurrent || pid == st::ParamId::HoldCurrent;
+  // Only the currents may change under a moving carriage. A move is planned with the speeds
+  // and acceleration it started with: a lower deceleration mid-move would carry the axis
+  // past a target it could reach before (found by fuzz/board), and changed mechanics would
+  // make the step counter and the target meaningless.
+  if (!currents && (moving(axes_[0]) || moving(axes_[1]))) return refuse(a, id);
   const st::SaveResult r = store_.save(next);
   if (!r.ok()) {
     // The store keeps using the previous verified set; so does the board.
