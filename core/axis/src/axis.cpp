@@ -467,7 +467,7 @@ StepResult step(const State& s0, const Input& in, const Config& c) {
       break;
   }
   s.phase = edge_target(e, s.phase);
-  // steps <= min(d_hard, 1001) and the bound lies within [-kPosMax, kPosMax].
+  // steps <= min(d_hard, 1000) and the bound lies within [-kPosMax, kPosMax].
   s.pos = static_cast<int32_t>(s.pos + static_cast<int64_t>(s.dir) * steps);
   out.steps = static_cast<int32_t>(steps);
   out.dir = s.dir;

@@ -115,7 +115,7 @@ struct State {
 };
 
 struct Output {
-  int32_t steps = 0;       // steps emitted this tick, 0..1001, all in direction `dir`
+  int32_t steps = 0;       // steps emitted this tick, 0..1000, all in direction `dir`
   int8_t dir = 1;          // DIR pin during those steps
   Edge edge = Edge::I;
   Class cls = Class::Halt;
