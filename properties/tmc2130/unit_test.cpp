@@ -227,6 +227,15 @@ TEST(tmc2130_driver, chip_that_keeps_resetting_is_reported) {
   EXPECT_EQ(rig.device.writes_of(Reg::IHOLD_IRUN), chip::Driver::kMaxWriteAttempts);
 }
 
+TEST(tmc2130_driver, read_right_after_reset_returns_restored_value) {
+  Bench b;
+  ASSERT_TRUE(b.driver.init());
+  ASSERT_TRUE(b.driver.set<Field::CHOPCONF_TOFF>(5));
+  b.device.power_cycle();
+  EXPECT_EQ(*b.driver.get<Field::CHOPCONF_TOFF>(), 5);
+  EXPECT_TRUE(b.chip_matches_shadows());
+}
+
 // A reset seen during the read of a readable register's RMW must not make the reset
 // contents the base of the write.
 TEST(tmc2130_driver, reset_during_readable_rmw_keeps_other_fields) {

@@ -95,8 +95,12 @@ Result<std::uint32_t> Driver::read(Reg reg) {
   if (!readable(reg)) return shadow_[index_of(reg)];
   const auto r = read_chip(reg);
   if (!r) return r;
+  const bool was_reset = reset_seen_;
   const auto f = finish(last_status_);
   if (!f) return f.error();
+  // A value read from a chip that had just reset is a reset value, not ours: read again
+  // after the re-init. GSTAT is the exception, its flags are the record of that event.
+  if (was_reset && info(reg).access != Access::RC) return read_chip(reg);
   return r;
 }
 
