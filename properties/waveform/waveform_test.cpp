@@ -4,6 +4,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -56,6 +57,27 @@ TEST(waveform_vcd, GenericWriterSortsAndParsesBack) {
   }
   EXPECT_EQ(bus_values, (std::vector<std::string>{"1011010", "11111111", "11"}));
   EXPECT_NE(os.str().find("z"), std::string::npos);
+}
+
+TEST(waveform_vcd, ManyWiresGetUniqueSafeIds) {
+  std::ostringstream os;
+  {
+    wf::VcdWriter w(os);
+    for (int i = 0; i < 300; ++i) {
+      const int s = w.wire("top", std::string("w").append(std::to_string(i)));
+      w.set(static_cast<std::uint64_t>(i), s, 1);
+    }
+    w.finish();
+  }
+  const auto d = wf::parse_vcd(os.str());
+  ASSERT_EQ(d.vars.size(), 300U);
+  std::set<std::string> ids;
+  for (const auto& v : d.vars) {
+    EXPECT_EQ(v.id.find_first_of("#$ "), std::string::npos) << v.id;
+    ids.insert(v.id);
+  }
+  EXPECT_EQ(ids.size(), 300U);
+  EXPECT_EQ(d.changes.size(), 600U);   // 300 initial values + 300 changes
 }
 
 TEST(waveform_vcd, StreamingFlushRejectsChangesInThePast) {

@@ -10,11 +10,15 @@ namespace ap::model::waveform {
 namespace {
 
 std::string make_id(std::size_t n) {
-  // Printable ASCII '!'..'~' (94 symbols), little-endian base 94.
+  // Printable ASCII '!'..'~' without '#' and '$' (92 symbols; a lone '#' or '$' token confuses
+  // some readers: timestamps and keywords), little-endian base 92.
+  static constexpr std::string_view kAlphabet =
+      "!\"%&'()*+,-./0123456789:;<=>?@ABCDEFGHIJKLMNOPQRSTUVWXYZ[\\]^_`abcdefghijklmnopqrstuvwxyz{|}~";
+  static_assert(kAlphabet.size() == 92);
   std::string id;
   do {
-    id.push_back(static_cast<char>('!' + n % 94));
-    n /= 94;
+    id.push_back(kAlphabet[n % kAlphabet.size()]);
+    n /= kAlphabet.size();
   } while (n != 0);
   return id;
 }
