@@ -60,7 +60,7 @@ Derived derive(const st::ParameterSet& p) {
     axis::Config& cfg = d.cfg[i];
     // A start speed of 0 µm/s (allowed by the map) or one that rounds to 0 means "start at
     // the lowest speed the step function knows", 1 ustep/s.
-    cfg.v_start = std::max(start.value, 1);
+    cfg.v_start = std::max<std::int32_t>(start.value, 1);
     cfg.v_slow = slow.value;
     cfg.v_fast = fast.value;
     cfg.accel = accel.value;
