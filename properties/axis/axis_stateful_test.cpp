@@ -376,7 +376,7 @@ struct EndstopHit : Cmd {
 };
 
 struct Wait : Cmd {
-  int after = *rc::gen::inRange(500, 2500);
+  int after = *rc::gen::inRange(300, 1500);
   void run(const Model&, Rig& rig) const override { rig.tick_n(after); }
   void show(std::ostream& os) const override { os << "Wait " << after << " ticks"; }
 };
@@ -432,7 +432,7 @@ RC_GTEST_PROP(AxisStateful, TwoAxesRandomCommands, ()) {
   // rc::state::check with the sequence length scaled down: each command runs up to hundreds
   // of ticks, so shorter sequences keep a case cheap under sanitizers without losing variety.
   const auto cmds = *rc::gen::scale(
-      0.5, rc::state::gen::commands(m, rc::state::gen::execOneOfWithArgs<Jog, Jog, Release, EStop, MoveAbs, MoveAbs, MoveRel,
+      0.4, rc::state::gen::commands(m, rc::state::gen::execOneOfWithArgs<Jog, Jog, Release, EStop, MoveAbs, MoveAbs, MoveRel,
                                                                           Retarget, Retarget, JogThenCloseTarget, Home, Endstop, EndstopHit, Block, Link, Wait>()));
   rc::state::runAll(cmds, m, rig);
   const auto sum = [&](int64_t AxisRig::*f) { return rig.ax[0].*f + rig.ax[1].*f; };
