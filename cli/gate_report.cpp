@@ -66,6 +66,12 @@ std::string md_cell(const std::string& s) {
   return o;
 }
 
+std::string fmt_number(double s) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", s);
+  return buf;
+}
+
 std::string fmt_seconds(double s) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f s", s);
@@ -264,7 +270,7 @@ void write_manifest(const Run& run, const std::string& release) {
   for (size_t i = 0; i < run.rows.size(); ++i) {
     const auto& r = run.rows[i];
     j << "    {\"stage\": \"" << json_escape(r.stage) << "\", \"result\": \"" << to_string(r.outcome.result)
-      << "\", \"seconds\": " << static_cast<long>(r.seconds * 10) / 10.0 << ", \"key\": \"" << json_escape(r.outcome.key)
+      << "\", \"seconds\": " << fmt_number(r.seconds) << ", \"key\": \"" << json_escape(r.outcome.key)
       << "\"}" << (i + 1 < run.rows.size() ? "," : "") << "\n";
   }
   j << "  ]\n}\n";
