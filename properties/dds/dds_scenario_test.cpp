@@ -127,6 +127,26 @@ TEST(dds_scenario, CommentsBlankLinesAndQuotes) {
   EXPECT_EQ(without_lines(sc::parse(sc::to_text(s))), without_lines(s));
 }
 
+TEST(dds_scenario, HoldsAppliesOperatorAndTolerance) {
+  const auto s = sc::parse(kHead +
+                           "expect at 1 s x.pos == 20 mm tol 1 um\nexpect at 1 s x.speed <= 10 mm/s tol 0.05 mm/s\n"
+                           "expect at 1 s x.status == reached\nexpect end gaps >= 15\nexpect at 1 s x.dir != +\n",
+                           "t.scn");
+  const auto um = [](double v) { return sc::Value{sc::Quantity{v, sc::Dim::length}}; };
+  const auto ums = [](double v) { return sc::Value{sc::Quantity{v, sc::Dim::speed}}; };
+  EXPECT_TRUE(sc::holds(s.expectations[0], um(20000.9)));
+  EXPECT_FALSE(sc::holds(s.expectations[0], um(20001.5)));
+  EXPECT_TRUE(sc::holds(s.expectations[1], ums(10049.0)));
+  EXPECT_FALSE(sc::holds(s.expectations[1], ums(10051.0)));
+  EXPECT_TRUE(sc::holds(s.expectations[2], sc::Value{std::string("reached")}));
+  EXPECT_FALSE(sc::holds(s.expectations[2], sc::Value{std::string("decel")}));
+  EXPECT_TRUE(sc::holds(s.expectations[3], sc::Value{sc::Quantity{15, sc::Dim::none}}));
+  EXPECT_FALSE(sc::holds(s.expectations[3], sc::Value{sc::Quantity{14, sc::Dim::none}}));
+  EXPECT_TRUE(sc::holds(s.expectations[4], sc::Value{std::string("-")}));
+  EXPECT_THROW((void)sc::holds(s.expectations[0], ums(1.0)), std::invalid_argument);
+  EXPECT_THROW((void)sc::holds(s.expectations[2], um(1.0)), std::invalid_argument);
+}
+
 // Random scenarios survive print -> parse unchanged.
 RC_GTEST_PROP(dds_scenario, PrintParseIsIdentity, ()) {
   sc::Scenario s;

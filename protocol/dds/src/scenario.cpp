@@ -568,6 +568,32 @@ Scenario parse(std::string_view text, const std::string& file) {
   return s;
 }
 
+bool holds(const Expectation& e, const Value& actual) {
+  if (const auto* want = std::get_if<std::string>(&e.value)) {
+    const auto* got = std::get_if<std::string>(&actual);
+    if (got == nullptr) throw std::invalid_argument("scenario: " + e.subject + " expects a word, got a number");
+    if (e.op == Op::eq) return *got == *want;
+    if (e.op == Op::ne) return *got != *want;
+    throw std::invalid_argument("scenario: words compare with == or != only");
+  }
+  const Quantity& want = std::get<Quantity>(e.value);
+  const auto* got = std::get_if<Quantity>(&actual);
+  if (got == nullptr) throw std::invalid_argument("scenario: " + e.subject + " expects a number, got a word");
+  if (got->dim != want.dim) throw std::invalid_argument("scenario: " + e.subject + ": dimension mismatch");
+  const double tol = e.tol ? e.tol->value : 0.0;
+  const double a = got->value;
+  const double v = want.value;
+  switch (e.op) {
+    case Op::eq: return std::abs(a - v) <= tol;
+    case Op::ne: return std::abs(a - v) > tol;
+    case Op::lt: return a < v + tol;
+    case Op::le: return a <= v + tol;
+    case Op::gt: return a > v - tol;
+    case Op::ge: return a >= v - tol;
+  }
+  return false;
+}
+
 Scenario parse_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ParseError(path, 0, "cannot open");

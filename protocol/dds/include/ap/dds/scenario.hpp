@@ -143,6 +143,12 @@ struct Scenario {
   friend bool operator==(const Scenario&, const Scenario&) = default;
 };
 
+// Evaluates one expectation's comparison against an observed value (the simulated PC decides
+// when). Quantities: == is |a - v| <= tol, != is |a - v| > tol, < / <= / > / >= are widened by
+// tol (a < v + tol, a <= v + tol, a > v - tol, a >= v - tol); tol defaults to 0. Words compare
+// with == and != only. Throws std::invalid_argument on a word/quantity or dimension mismatch.
+bool holds(const Expectation& e, const Value& actual);
+
 Scenario parse(std::string_view text, const std::string& file = "<scenario>");
 Scenario parse_file(const std::string& path);
 std::string to_text(const Scenario& s);
