@@ -127,13 +127,24 @@ here = os.path.dirname(os.path.abspath(__file__))
 with open(os.path.join(here, "golden.json"), "w") as f:
     json.dump(out, f, indent=1)
     f.write("\n")
-# Seed corpora: each valid and invalid frame, one small file each.
+# Seed corpora: each valid and invalid frame, one small file each. The stream_framer target
+# reads a chunk size and the dispatch target a handler mask from the first byte, so their
+# seeds carry that byte in front.
 root = os.path.dirname(os.path.dirname(here))
-for target, items in (("frame_parser", commands + invalid_commands + echoes + invalid_echoes),
-                      ("stream_framer", streams + commands[:3]),
-                      ("dispatch", commands + invalid_commands)):
+def write_corpus(target, blobs):
     d = os.path.join(root, "fuzz", "corpus", target)
     os.makedirs(d, exist_ok=True)
-    for i, it in enumerate(items):
+    for old in os.listdir(d):
+        if old.startswith("golden-"):
+            os.remove(os.path.join(d, old))
+    for i, blob in enumerate(blobs):
         with open(os.path.join(d, "golden-%02d" % i), "wb") as f:
-            f.write(it["bytes"].encode("latin-1"))
+            f.write(blob)
+enc = lambda it: it["bytes"].encode("latin-1")
+write_corpus("frame_parser", [enc(it) for it in commands + invalid_commands + echoes + invalid_echoes])
+write_corpus("stream_framer", [bytes([i % 97]) + enc(it) for i, it in enumerate(streams + commands[:3])] +
+             [bytes([5]) + b"".join(enc(e) for e in echoes)])
+# Mask 0x83 removes the handlers of IDs 3, 11 (goto, steps): the thesis example then has X
+# handled and Y not, which must run neither.
+write_corpus("dispatch", [b"\x00" + enc(it) for it in commands + invalid_commands] +
+             [b"\x83" + enc(commands[1]) + enc(commands[2]), b"\x84" + enc(commands[4])])
