@@ -119,7 +119,11 @@ BootResult Board::boot() {
       r.drivers_ok = false;
     }
   }
-  r.drivers_ok = apply_currents() && apply_microsteps() && r.drivers_ok;
+  // Both are attempted even if one fails, so a single bad register does not leave the
+  // other at its reset value.
+  const bool currents = apply_currents();
+  const bool microsteps = apply_microsteps();
+  r.drivers_ok = r.drivers_ok && currents && microsteps;
 
   if (hw_.sample != nullptr) hw_.sample(hw_.ctx, in_);
   const st::ParameterSet& p = store_.current();
@@ -398,7 +402,7 @@ frame::HandlerStatus Board::refuse(Axis a, c::CommandId id) {
   return HandlerStatus::Refused;
 }
 
-bool Board::motion_permitted(Axis a, c::CommandId id) {
+bool Board::motion_permitted() {
   if (sleeping_) return false;
   // The saved step counter stops being trustworthy the moment the carriage may move, so
   // its validity flag is cleared in FRAM (verified) before the first step; if that write
@@ -408,8 +412,6 @@ bool Board::motion_permitted(Axis a, c::CommandId id) {
     fault_ = kFaultStorage + static_cast<std::int32_t>(r.status);
     return false;
   }
-  (void)a;
-  (void)id;
   return true;
 }
 
@@ -431,7 +433,7 @@ HandlerStatus Board::on_stop(void* ctx, Axis a, std::int32_t) {
 HandlerStatus Board::on_jog(void* ctx, Axis a, std::int32_t data) {
   auto* b = static_cast<Board*>(ctx);
   if (data == 0) return b->set_axis_command(a, c::CommandId::Jog, {axis::CmdKind::Stop, 0, 0, 0});
-  if (!b->motion_permitted(a, c::CommandId::Jog)) return b->refuse(a, c::CommandId::Jog);
+  if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Jog);
   const std::int8_t dir = data > 0 ? std::int8_t{1} : std::int8_t{-1};
   const std::uint8_t level = (data == c::kJogFast || data == -c::kJogFast) ? 1 : 0;
   return b->set_axis_command(a, c::CommandId::Jog, {axis::CmdKind::Jog, dir, level, 0});
@@ -444,7 +446,7 @@ HandlerStatus Board::on_goto(void* ctx, Axis a, std::int32_t um) {
   const axis::Converted t =
       axis::target_to_usteps(um, x ? p.soft_min_x_um : p.soft_min_y_um, x ? p.soft_max_x_um : p.soft_max_y_um, b->derived_.mech);
   if (t.error != axis::Error::None) return b->refuse(a, c::CommandId::Goto);
-  if (!b->motion_permitted(a, c::CommandId::Goto)) return b->refuse(a, c::CommandId::Goto);
+  if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Goto);
   // Positioning runs at the fast level (§4.9: the two levels are the manual speeds; a move
   // uses the configured positioning speed, which is the fast one).
   return b->set_axis_command(a, c::CommandId::Goto, {axis::CmdKind::MoveAbs, 0, 1, t.value});
@@ -454,13 +456,13 @@ HandlerStatus Board::on_move(void* ctx, Axis a, std::int32_t um) {
   auto* b = static_cast<Board*>(ctx);
   const axis::Converted d = axis::um_to_usteps(um, b->derived_.mech, axis::Round::Nearest);
   if (d.error != axis::Error::None) return b->refuse(a, c::CommandId::Move);
-  if (!b->motion_permitted(a, c::CommandId::Move)) return b->refuse(a, c::CommandId::Move);
+  if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Move);
   return b->set_axis_command(a, c::CommandId::Move, {axis::CmdKind::MoveRel, 0, 1, d.value});
 }
 
 HandlerStatus Board::on_home(void* ctx, Axis a, std::int32_t) {
   auto* b = static_cast<Board*>(ctx);
-  if (!b->motion_permitted(a, c::CommandId::Home)) return b->refuse(a, c::CommandId::Home);
+  if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Home);
   return b->set_axis_command(a, c::CommandId::Home, {axis::CmdKind::Home, 0, 0, 0});
 }
 

@@ -174,7 +174,7 @@ class Board {
   void check_drivers();
   void send_echoes();
 
-  bool motion_permitted(Axis a, codec::CommandId id);
+  bool motion_permitted();
   frame::HandlerStatus set_axis_command(Axis a, codec::CommandId id, const axis::Command& c);
   frame::HandlerStatus set_parameter(Axis a, codec::CommandId id, storage::ParamId pid, std::int32_t value);
   bool apply_currents();
