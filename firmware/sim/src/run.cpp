@@ -1,0 +1,920 @@
+// The simulated PC, the fault injector and the board server (docs/sim.md).
+#include "sim/run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <sstream>
+#include <thread>
+#include <variant>
+
+#include "ap/dds/domain.hpp"
+#include "client/client.hpp"
+#include "codec/commands.hpp"
+#include "codec/layout.hpp"
+#include "codec/statuses.hpp"
+#include "codec/subscribers.hpp"
+#include "core/frame/command_codec.hpp"
+#include "core/frame/frames.hpp"
+#include "core/storage/parameters.hpp"
+#include "sim/params.hpp"
+
+namespace ap::sim {
+
+namespace sc = ap::scenario;
+using codec::CommandId;
+
+// ------------------------------------------------------------------------------ board side
+
+dds::Telemetry telemetry_of(SimBoard& sb, std::uint32_t id) {
+  dds::Telemetry t;
+  t.board = id;
+  t.vtime_us = static_cast<std::uint64_t>(sb.now_us());
+  if (!sb.booted()) return t;
+  const board::Board& b = sb.core();
+  t.main_state = static_cast<std::uint8_t>(b.main_state());
+  const board::Inputs& in = b.inputs();
+  t.ble_status = static_cast<std::uint8_t>((in.ble_status1 ? 1U : 0U) | (in.ble_status2 ? 2U : 0U));
+  t.led = sb.led();
+  t.charger = in.charger;
+  t.usb = in.usb;
+  t.low_battery = b.block() == board::Block::Battery;
+  t.battery_mv = in.battery_mv;
+  t.charge_ma = static_cast<std::int16_t>(std::clamp(in.charge_ma, -32768, 32767));
+  t.temperature_mc = in.temperature_mc;
+  t.rotation_mdeg = in.rotation_mdeg;
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    const auto ax = static_cast<board::Axis>(a);
+    const axis::State& s = b.axis_state(ax);
+    dds::AxisTelemetry& o = t.axis[a];
+    o.pos = s.pos;
+    o.target = s.target;
+    o.speed = s.v / axis::kSpeedScale;
+    o.dir = s.dir > 0 ? 1 : 0;
+    o.state = static_cast<std::uint8_t>(s.phase);
+    o.endstop_min = in.endstop_min[a] != 0;
+    o.endstop_max = in.endstop_max[a] != 0;
+    o.blocked = b.block() != board::Block::None;
+    o.enabled = b.motor_output(ax).enable;
+  }
+  return t;
+}
+
+int serve_board(const dds::ParticipantPtr& participant, const BoardOptions& opt, std::chrono::milliseconds idle_timeout,
+                const std::atomic<bool>* stop) {
+  dds::BoardEndpoint ep(participant, opt.id);
+  SimBoard board(opt);
+  for (;;) {
+    if (stop != nullptr && stop->load()) return 1;
+    auto cmd = ep.take_command(std::chrono::milliseconds(stop != nullptr ? 200 : idle_timeout.count()));
+    if (!cmd) {
+      if (stop != nullptr) {
+        idle_timeout -= std::chrono::milliseconds(200);
+        if (idle_timeout.count() > 0) continue;
+      }
+      return 2;
+    }
+    if ((cmd->flags & dds::kFlagShutdown) != 0U) {
+      board.finish();
+      ep.echo(*cmd, {}, telemetry_of(board, opt.id));
+      return 0;
+    }
+    if ((cmd->flags & kFlagEnv) != 0U) {
+      std::string reply = board.env(std::string(cmd->bytes.begin(), cmd->bytes.end()));
+      if (reply.size() > dds::kFrameMax) reply.resize(dds::kFrameMax);
+      const std::vector<std::uint8_t> bytes(reply.begin(), reply.end());
+      ep.echo(*cmd, bytes, telemetry_of(board, opt.id));
+      continue;
+    }
+    board.advance_to(static_cast<std::int64_t>(cmd->vtime_us));
+    if (!cmd->bytes.empty()) board.rx(cmd->bytes);
+    const std::vector<std::uint8_t> tx = board.take_tx(dds::kFrameMax);
+    const dds::Telemetry t = telemetry_of(board, opt.id);
+    ep.echo(*cmd, tx, t);
+  }
+}
+
+// ---------------------------------------------------------------------------- fault injector
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+class FaultLink {
+ public:
+  FaultLink(const std::vector<sc::Fault>& faults, sc::Direction dir, std::uint64_t seed) : rng_(seed) {
+    for (const sc::Fault& f : faults) {
+      if (f.dir == sc::Direction::both || f.dir == dir) faults_.push_back(f);
+    }
+  }
+  void cut_until(std::int64_t t) { cut_until_ = t; }
+  [[nodiscard]] bool cut(std::int64_t t) const { return t < cut_until_; }
+
+  // One frame entering the link at t.
+  void push(std::int64_t t, Bytes frame, LinkStats& st) {
+    ++st.frames;
+    if (cut(t)) {
+      ++st.cut;
+      return;
+    }
+    std::int64_t at = t;
+    bool dup = false;
+    bool reorder = false;
+    for (const sc::Fault& f : faults_) {
+      if (t < f.from_us || (f.to_us && t >= *f.to_us)) continue;
+      const double p = f.amount.value / 100.0;
+      switch (f.kind) {
+        case sc::FaultKind::drop:
+          if (roll(p)) {
+            ++st.dropped;
+            return;
+          }
+          break;
+        case sc::FaultKind::corrupt:
+          if (roll(p) && !frame.empty()) {
+            std::uniform_int_distribution<std::size_t> pos(0, frame.size() - 1);
+            std::uniform_int_distribution<int> mask(1, 255);
+            frame[pos(rng_)] ^= static_cast<std::uint8_t>(mask(rng_));
+            ++st.corrupted;
+          }
+          break;
+        case sc::FaultKind::duplicate:
+          if (roll(p)) dup = true;
+          break;
+        case sc::FaultKind::reorder:
+          if (roll(p)) reorder = true;
+          break;
+        case sc::FaultKind::delay: {
+          std::int64_t d = static_cast<std::int64_t>(f.amount.value);
+          if (f.jitter) {
+            std::uniform_int_distribution<std::int64_t> j(0, static_cast<std::int64_t>(f.jitter->value));
+            d += j(rng_);
+          }
+          at += d;
+          ++st.delayed;
+          break;
+        }
+      }
+    }
+    if (reorder && !held_) {
+      held_ = std::make_pair(at, std::move(frame));
+      ++st.reordered;
+      return;
+    }
+    queue_.emplace_back(at, frame);
+    if (dup) {
+      queue_.emplace_back(at, frame);
+      ++st.duplicated;
+    }
+    if (held_) {   // the held frame goes out right after the one that overtook it
+      queue_.emplace_back(std::max(at, held_->first), std::move(held_->second));
+      held_.reset();
+    }
+  }
+
+  // Frames that leave the link by t, in order, at most max_bytes (the rest wait).
+  Bytes pop(std::int64_t t, std::size_t max_bytes, LinkStats& st) {
+    Bytes out;
+    std::stable_sort(queue_.begin(), queue_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    while (!queue_.empty() && queue_.front().first <= t && out.size() + queue_.front().second.size() <= max_bytes) {
+      if (cut(t)) {
+        ++st.cut;
+      } else {
+        out.insert(out.end(), queue_.front().second.begin(), queue_.front().second.end());
+        ++st.delivered;
+      }
+      queue_.pop_front();
+    }
+    return out;
+  }
+
+ private:
+  bool roll(double p) { return p > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < p; }
+  std::vector<sc::Fault> faults_;
+  std::mt19937_64 rng_;
+  std::deque<std::pair<std::int64_t, Bytes>> queue_;
+  std::optional<std::pair<std::int64_t, Bytes>> held_;
+  std::int64_t cut_until_ = -1;
+};
+
+// ------------------------------------------------------------------------------- the PC
+
+struct AxisPc {
+  std::int32_t jog = 0;          // held jog level (sign = direction), 0 = none
+  bool jogging = false;          // the last motion command of this axis is a jog
+  std::deque<frame::AxisCommand> queue;
+  dds::AxisTelemetry prev{};
+  bool have_prev = false;
+  codec::EchoStatus status = codec::EchoStatus::Idle;
+  bool have_status = false;
+  std::int32_t data = 0;
+};
+
+struct BoardPc {
+  std::uint32_t id = 0;
+  std::unique_ptr<dds::PcEndpoint> ep;
+  client::Client client;
+  std::unique_ptr<FaultLink> down, up;   // to the board, to the PC
+  std::array<AxisPc, 2> ax;
+  std::deque<frame::AxisCommand> unit;
+  dds::Telemetry tel{};
+  bool have_tel = false;
+  std::map<std::string, std::int32_t> subs;      // subscriber key -> latest data
+  std::map<std::uint8_t, std::int32_t> params;   // param index -> latest data
+  std::int64_t last_delivered_us = 0;
+  std::uint32_t echoes = 0;
+  BoardVerdict verdict;
+  std::vector<bool> done;   // per expectation: settled (by/at)
+  std::uint64_t cmd_seq = 0;
+};
+
+struct Mech {
+  double um_per_ustep = 2000.0 / 3200.0;
+  double fast_um_s = 10'000, slow_um_s = 2000, start_um_s = 500, accel_um_s2 = 20'000, home_um_s = 2000;
+  double max_speed_um_s = 10'000;   // the highest speed limit ever requested
+  double min_accel_um_s2 = 20'000;
+};
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+
+std::string tstr(std::int64_t us) { return fmt(static_cast<double>(us) / 1e6) + " s"; }
+
+std::string status_key(codec::EchoStatus s) {
+  const auto* i = codec::find_status(static_cast<std::uint32_t>(s));
+  return i != nullptr ? std::string(i->key) : "?";
+}
+
+class Pc {
+ public:
+  Pc(const sc::Scenario& s, const RunOptions& opt, std::uint32_t domain) : s_(s), opt_(opt) {
+    pp_ = dds::make_participant(domain);
+    for (std::uint32_t b = 0; b < s.boards; ++b) {
+      auto pc = std::make_unique<BoardPc>();
+      pc->id = b;
+      pc->ep = std::make_unique<dds::PcEndpoint>(pp_, b);
+      pc->down = std::make_unique<FaultLink>(s.faults, sc::Direction::to_board, s.seed * 1'000'003ULL + b * 2ULL);
+      pc->up = std::make_unique<FaultLink>(s.faults, sc::Direction::to_pc, s.seed * 1'000'003ULL + b * 2ULL + 1ULL);
+      pc->done.assign(s.expectations.size(), false);
+      pc->verdict.board = b;
+      boards_.push_back(std::move(pc));
+    }
+    // Mechanics the PC assumes (defaults + setup), for unit conversion of the telemetry.
+    const storage::ParameterSet d = storage::defaults();
+    double lead = d.lead_pitch_um, steps = d.steps_per_rev, micro = d.microsteps;
+    mech_.fast_um_s = d.fast_speed_um_s;
+    mech_.slow_um_s = d.slow_speed_um_s;
+    mech_.start_um_s = d.start_speed_um_s;
+    mech_.accel_um_s2 = d.max_acceleration_um_s2;
+    mech_.home_um_s = d.homing_speed_um_s;
+    for (const sc::Setup& st : s.setup) {
+      if ((st.key == "param" || st.key == "fram") && st.amount) {
+        const auto id = param_by_name(st.word);
+        if (id == storage::ParamId::LeadPitch) lead = st.amount->value;
+        if (id == storage::ParamId::StepsPerRev) steps = st.amount->value;
+        if (id == storage::ParamId::Microsteps) micro = st.amount->value;
+        if (id == storage::ParamId::FastSpeed) mech_.fast_um_s = st.amount->value;
+        if (id == storage::ParamId::MaxAcceleration) mech_.accel_um_s2 = st.amount->value;
+      }
+    }
+    mech_.um_per_ustep = lead / (steps * micro);
+    mech_.max_speed_um_s = std::max({mech_.fast_um_s, mech_.slow_um_s, mech_.home_um_s});
+    mech_.min_accel_um_s2 = mech_.accel_um_s2;
+    // Which parameters the echoes must carry (param.NAME expectations), in slot 3.
+    for (const sc::Expectation& e : s.expectations) {
+      if (e.subject.rfind("param.", 0) == 0) {
+        const auto id = param_by_name(e.subject.substr(6));
+        if (!id) throw std::runtime_error("unknown parameter in expectation: " + e.subject);
+        const auto idx = static_cast<std::uint8_t>(*id);
+        if (std::find(param_slots_.begin(), param_slots_.end(), idx) == param_slots_.end()) param_slots_.push_back(idx);
+      }
+    }
+  }
+
+  ~Pc() {
+    boards_.clear();
+    pp_.reset();
+  }
+
+  void connect() {
+    for (auto& b : boards_) {
+      if (!b->ep->wait_matched(std::chrono::seconds(20))) {
+        throw std::runtime_error("board " + std::to_string(b->id) + " did not appear on the bus within 20 s");
+      }
+    }
+  }
+
+  RunResult run() {
+    const auto wall0 = std::chrono::steady_clock::now();
+    connect();
+    setup();
+    std::size_t next_action = 0;
+    std::int64_t t = 0;
+    for (; t <= s_.duration_us; t += opt_.step_us) {
+      if (opt_.realtime) std::this_thread::sleep_until(wall0 + std::chrono::microseconds(t));
+      while (next_action < s_.actions.size() && s_.actions[next_action].t_us <= t) {
+        apply(s_.actions[next_action], t);
+        ++next_action;
+      }
+      step(t);
+      for (auto& b : boards_) {
+        check_safety(*b, t);
+        evaluate(*b, t, false);
+      }
+    }
+    t -= opt_.step_us;
+    for (auto& b : boards_) evaluate(*b, t, true);
+    finish(t);
+    RunResult r;
+    r.failures = failures_;
+    r.pass = failures_.empty();
+    r.vtime_us = t;
+    r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    r.bus_round_trips = round_trips_;
+    r.domain = pp_->domain();
+    for (auto& b : boards_) r.boards.push_back(b->verdict);
+    return r;
+  }
+
+ private:
+  void fail(const std::string& m) {
+    if (failures_.size() < 200) failures_.push_back(m);
+  }
+
+  std::string env(BoardPc& b, const std::string& line, std::int64_t t) {
+    const std::vector<std::uint8_t> bytes(line.begin(), line.end());
+    const std::uint64_t seq = b.ep->send(bytes, static_cast<std::uint64_t>(t), kFlagEnv);
+    ++round_trips_;
+    const dds::EchoSample e = wait_echo(b, seq);
+    std::string reply(e.bytes.begin(), e.bytes.end());
+    if (reply.rfind("ok", 0) != 0) fail("board " + std::to_string(b.id) + ": environment command '" + line + "': " + reply);
+    return reply.size() > 3 ? reply.substr(3) : std::string();
+  }
+
+  dds::EchoSample wait_echo(BoardPc& b, std::uint64_t seq) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    for (;;) {
+      auto e = b.ep->take_echo(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
+      if (!e) throw std::runtime_error("board " + std::to_string(b.id) + " did not answer bus command " + std::to_string(seq));
+      if (e->cmd_seq == seq) return std::move(*e);
+    }
+  }
+
+  void setup() {
+    for (auto& b : boards_) {
+      for (const sc::Setup& st : s_.setup) {
+        const auto v = [&] { return std::to_string(std::llround(st.amount ? st.amount->value : 0.0)); };
+        if (st.key == "battery") env(*b, "battery " + v(), 0);
+        else if (st.key == "charger" || st.key == "usb") env(*b, st.key + (st.word == "plugged" ? " 1" : " 0"), 0);
+        else if (st.key == "ble") env(*b, "ble " + st.word, 0);
+        else if (st.key == "temperature") env(*b, "temperature " + v(), 0);
+        else if (st.key == "pos") env(*b, std::string("pos ") + st.axis + " " + v(), 0);
+        else if (st.key == "endstop") env(*b, std::string("endstop_at ") + st.axis + " " + st.word + " " + v(), 0);
+        else env(*b, st.key + " " + st.word + " " + v(), 0);   // param / fram
+      }
+      env(*b, "boot", 0);
+    }
+  }
+
+  static std::int32_t um(const sc::Action& a) { return static_cast<std::int32_t>(std::llround(a.amount ? a.amount->value : 0.0)); }
+
+  void apply(const sc::Action& a, std::int64_t t) {
+    for (auto& bp : boards_) {
+      BoardPc& b = *bp;
+      if (!a.target.all && a.target.board != b.id) continue;
+      const std::size_t ai = a.axis == 'y' ? 1 : 0;
+      AxisPc& x = b.ax[ai];
+      const std::string where = s_.name + ".scn:" + std::to_string(a.line);
+      switch (a.verb) {
+        case sc::Verb::jog:
+          x.jog = (a.word == "-" ? -1 : 1) * (a.word2 == "fast" ? codec::kJogFast : codec::kJogSlow);
+          x.jogging = true;
+          break;
+        case sc::Verb::stop:
+          x.jog = 0;
+          x.jogging = false;
+          x.queue.push_back({CommandId::Stop, 0});
+          break;
+        case sc::Verb::go_to:
+          x.jog = 0;
+          x.jogging = false;
+          x.queue.push_back({CommandId::Goto, um(a)});
+          break;
+        case sc::Verb::move:
+          x.jog = 0;
+          x.jogging = false;
+          x.queue.push_back({CommandId::Move, um(a)});
+          break;
+        case sc::Verb::home:
+          x.jog = 0;
+          x.jogging = false;
+          x.queue.push_back({CommandId::Home, 0});
+          break;
+        case sc::Verb::set_speed:
+          b.unit.push_back({a.word == "fast" ? CommandId::SetFastSpeed : CommandId::SetSlowSpeed, um(a)});
+          if (a.word == "fast") mech_.fast_um_s = um(a);
+          mech_.max_speed_um_s = std::max(mech_.max_speed_um_s, static_cast<double>(um(a)));
+          break;
+        case sc::Verb::set_accel:
+          b.unit.push_back({CommandId::SetAccel, um(a)});
+          mech_.accel_um_s2 = um(a);
+          mech_.min_accel_um_s2 = std::min(mech_.min_accel_um_s2, static_cast<double>(um(a)));
+          break;
+        case sc::Verb::save: b.unit.push_back({CommandId::SaveParams, 0}); break;
+        case sc::Verb::peripherals:
+          b.unit.push_back({a.word == "on" ? CommandId::PeriphOn : CommandId::PeriphOff, 0});
+          break;
+        case sc::Verb::tmc:
+          if (a.word == "IRUN" || a.word == "IHOLD") {
+            x.queue.push_back({a.word == "IRUN" ? CommandId::SetIrun : CommandId::SetIhold, um(a)});
+          } else {
+            fail(where + ": tmc " + a.word + " cannot be set over the protocol (only IRUN and IHOLD have commands)");
+          }
+          break;
+        case sc::Verb::subscribe:
+        case sc::Verb::unsubscribe: {
+          std::vector<codec::SubscriberId> ids;
+          if (a.word == "battery" || a.word == "all") ids.push_back(codec::SubscriberId::BatteryMv);
+          if (a.word == "charge_current" || a.word == "all") ids.push_back(codec::SubscriberId::ChargeMa);
+          if (a.word == "temperature" || a.word == "all") ids.push_back(codec::SubscriberId::TemperatureMc);
+          if (a.word == "rotation" || a.word == "all") ids.push_back(codec::SubscriberId::RotationMdeg);
+          for (const auto id : ids) {
+            const auto it = std::find(subscribed_.begin(), subscribed_.end(), id);
+            if (a.verb == sc::Verb::subscribe && it == subscribed_.end()) subscribed_.push_back(id);
+            if (a.verb == sc::Verb::unsubscribe && it != subscribed_.end()) subscribed_.erase(it);
+          }
+          break;
+        }
+        case sc::Verb::raw: {
+          const Bytes bytes(a.word.begin(), a.word.end());
+          b.down->push(t, bytes, b.verdict.to_board);
+          break;
+        }
+        case sc::Verb::link_cut: {
+          const std::int64_t until = a.amount ? t + static_cast<std::int64_t>(a.amount->value) : s_.duration_us + 1;
+          b.down->cut_until(until);
+          b.up->cut_until(until);
+          break;
+        }
+        case sc::Verb::link_restore:
+          b.down->cut_until(-1);
+          b.up->cut_until(-1);
+          break;
+        case sc::Verb::charger: env(b, std::string("charger ") + (a.word == "plug" ? "1" : "0"), t); break;
+        case sc::Verb::usb: env(b, std::string("usb ") + (a.word == "plug" ? "1" : "0"), t); break;
+        case sc::Verb::battery: env(b, "battery " + std::to_string(um(a)), t); break;
+        case sc::Verb::temperature: env(b, "temperature " + std::to_string(um(a)), t); break;
+        case sc::Verb::rotate: env(b, "rotate " + std::to_string(um(a)), t); break;
+        case sc::Verb::ble: env(b, "ble " + a.word, t); break;
+        case sc::Verb::endstop: env(b, std::string("endstop ") + a.axis + " " + a.word + " " + a.word2, t); break;
+        case sc::Verb::button: env(b, "button " + a.word, t); break;
+        case sc::Verb::reboot:
+          env(b, "reboot", t);
+          break;
+      }
+    }
+  }
+
+  frame::CommandFrame build(BoardPc& b) {
+    frame::CommandFrame f;
+    std::array<bool, 2> used{};
+    for (std::size_t i = 0; i < 2; ++i) {
+      AxisPc& x = b.ax[i];
+      frame::AxisCommand& part = i == 0 ? f.x : f.y;
+      if (!x.queue.empty()) {
+        part = x.queue.front();
+        x.queue.pop_front();
+        used[i] = true;
+      } else if (x.jog != 0) {
+        part = {CommandId::Jog, x.jog};
+        used[i] = true;
+      }
+    }
+    for (std::size_t i = 0; i < 2 && !b.unit.empty(); ++i) {
+      if (used[i]) continue;
+      (i == 0 ? f.x : f.y) = b.unit.front();
+      b.unit.pop_front();
+    }
+    std::size_t slot = 0;
+    for (const auto id : subscribed_) {
+      if (slot >= (param_slots_.empty() ? codec::kSubscriberSlots : codec::kSubscriberSlots - 1)) break;
+      f.subs[slot++] = {id, 0};
+    }
+    if (!param_slots_.empty()) {
+      f.subs[codec::kSubscriberSlots - 1] = {codec::SubscriberId::Param, param_slots_[frame_count_ % param_slots_.size()]};
+    }
+    return f;
+  }
+
+  void step(std::int64_t t) {
+    const bool frame_time = t % s_.period_us == 0;
+    for (auto& bp : boards_) {
+      BoardPc& b = *bp;
+      if (frame_time) {
+        const auto text = b.client.next_command(build(b));
+        if (text) {
+          b.down->push(t, Bytes(text->begin(), text->end()), b.verdict.to_board);
+        } else {
+          fail("board " + std::to_string(b.id) + ": the PC could not format a command frame at " + tstr(t));
+        }
+      }
+      const Bytes out = b.down->pop(t, 3 * codec::kCommandLength, b.verdict.to_board);
+      if (!out.empty()) {
+        const bool session = b.have_tel ? b.tel.ble_status == 2 : true;
+        bool ok_frame = session;
+        for (std::size_t k = 0; ok_frame && k + codec::kCommandLength <= out.size(); k += codec::kCommandLength) {
+          frame::CommandFrame cf;
+          ok_frame = frame::parse_command(std::span<const std::uint8_t>(out.data() + k, codec::kCommandLength), cf).ok();
+        }
+        if (ok_frame) b.last_delivered_us = t;
+      }
+      b.cmd_seq = b.ep->send(out, static_cast<std::uint64_t>(t));
+      ++round_trips_;
+    }
+    if (frame_time) ++frame_count_;
+    for (auto& bp : boards_) {
+      BoardPc& b = *bp;
+      const dds::EchoSample e = wait_echo(b, b.cmd_seq);
+      if (!b.have_tel || e.telemetry != b.tel) {
+        for (std::size_t i = 0; i < 2; ++i) {
+          b.ax[i].prev = b.have_tel ? b.tel.axis[i] : e.telemetry.axis[i];
+          b.ax[i].have_prev = b.have_tel;
+        }
+      }
+      b.tel = e.telemetry;
+      b.have_tel = true;
+      for (std::size_t k = 0; k + codec::kEchoLength <= e.bytes.size(); k += codec::kEchoLength) {
+        b.up->push(t, Bytes(e.bytes.begin() + static_cast<std::ptrdiff_t>(k),
+                            e.bytes.begin() + static_cast<std::ptrdiff_t>(k + codec::kEchoLength)),
+                   b.verdict.to_pc);
+      }
+      const Bytes in = b.up->pop(t, 64 * codec::kEchoLength, b.verdict.to_pc);
+      if (!in.empty()) receive(b, in, t);
+    }
+  }
+
+  void receive(BoardPc& b, const Bytes& in, std::int64_t t) {
+    for (const client::EchoEvent& ev : b.client.receive(std::span<const std::uint8_t>(in))) {
+      if (!ev.lost.empty()) b.verdict.gaps.push_back({t, static_cast<std::uint32_t>(ev.lost.size())});
+      if (ev.kind == client::EchoKind::Matched || ev.kind == client::EchoKind::Duplicate ||
+          ev.kind == client::EchoKind::Unexpected) {
+        ++b.echoes;
+        for (std::size_t i = 0; i < 2; ++i) {
+          const frame::AxisEcho& ae = i == 0 ? ev.echo.x : ev.echo.y;
+          b.ax[i].status = ae.status;
+          b.ax[i].data = ae.data;
+          b.ax[i].have_status = true;
+        }
+        for (const frame::SubscriberPacket& p : ev.echo.subs) {
+          if (p.slot.id == codec::SubscriberId::None) continue;
+          if (p.slot.id == codec::SubscriberId::Param) {
+            b.params[p.slot.arg] = p.data;
+          } else {
+            const auto* info = codec::find_subscriber(static_cast<std::uint32_t>(p.slot.id));
+            if (info != nullptr) b.subs[std::string(info->key)] = p.data;
+          }
+        }
+      } else if (ev.kind == client::EchoKind::Rejected) {
+        for (std::size_t i = 0; i < 2; ++i) {
+          b.ax[i].status = codec::EchoStatus::FrameRejected;
+          b.ax[i].have_status = true;
+        }
+      }
+    }
+  }
+
+  // ---- the axis safety properties on the telemetry (every step) --------------------------
+  void check_safety(BoardPc& b, std::int64_t t) {
+    const double dt = static_cast<double>(opt_.step_us) / 1e6;
+    for (std::size_t i = 0; i < 2; ++i) {
+      const AxisPc& x = b.ax[i];
+      const dds::AxisTelemetry& n = b.tel.axis[i];
+      const char an = i == 0 ? 'x' : 'y';
+      auto bad = [&](const std::string& what) {
+        fail("safety: board " + std::to_string(b.id) + " axis " + an + " at " + tstr(t) + ": " + what);
+      };
+      const double v = n.speed * mech_.um_per_ustep;
+      if (v > mech_.max_speed_um_s * 1.01 + 2 * mech_.um_per_ustep) {
+        bad("speed " + fmt(v) + " um/s above every speed limit the PC set (" + fmt(mech_.max_speed_um_s) + " um/s)");
+      }
+      if (!x.have_prev) continue;
+      const dds::AxisTelemetry& p = x.prev;
+      if (p.endstop_max && n.endstop_max && n.pos > p.pos) bad("moved toward the active max endstop");
+      if (p.endstop_min && n.endstop_min && n.pos < p.pos) bad("moved toward the active min endstop");
+      if (p.blocked && n.blocked && n.speed > p.speed) bad("speed increased while the board is blocked");
+      if (n.dir != p.dir) {
+        const double vp = p.speed * mech_.um_per_ustep;
+        const double bound = mech_.start_um_s + 2.0 * mech_.accel_um_s2 * dt + 2 * mech_.um_per_ustep;
+        if (vp > bound) bad("DIR reversed while moving at " + fmt(vp) + " um/s (start speed " + fmt(mech_.start_um_s) + ")");
+      }
+      // The link watchdog: 3 command periods without a frame reaching the board, then a ramped
+      // stop from at most the highest speed at the lowest acceleration ever set.
+      const double stop_s = mech_.max_speed_um_s / std::max(1.0, mech_.min_accel_um_s2);
+      const auto bound_us = static_cast<std::int64_t>(3 * s_.period_us + static_cast<std::int64_t>(stop_s * 1e6) + 2 * opt_.step_us);
+      if (x.jogging && t - b.last_delivered_us > bound_us && n.speed != 0) {
+        bad("still jogging " + tstr(t - b.last_delivered_us) + " after the last frame reached the board");
+      }
+    }
+  }
+
+  // ---- expectations ----------------------------------------------------------------------
+  using Val = std::variant<std::string, double>;
+
+  std::optional<Val> value(BoardPc& b, const std::string& subj, std::int64_t t) {
+    auto on = [](bool v) { return Val(std::string(v ? "on" : "off")); };
+    if (subj.size() > 2 && (subj[0] == 'x' || subj[0] == 'y') && subj[1] == '.') {
+      const std::size_t i = subj[0] == 'y' ? 1 : 0;
+      const std::string f = subj.substr(2);
+      const dds::AxisTelemetry& a = b.tel.axis[i];
+      if (f == "pos") return Val(a.pos * mech_.um_per_ustep);
+      if (f == "target") return Val(a.target * mech_.um_per_ustep);
+      if (f == "speed") return Val(a.speed * mech_.um_per_ustep);
+      if (f == "dir") return Val(std::string(a.dir != 0 ? "+" : "-"));
+      if (f == "endstop_min") return on(a.endstop_min);
+      if (f == "endstop_max") return on(a.endstop_max);
+      if (f == "enabled") return on(a.enabled);
+      if (f == "blocked") return on(a.blocked);
+      if (f == "status") return Val(b.ax[i].have_status ? status_key(b.ax[i].status) : std::string("none"));
+      if (f == "lost_steps") return Val(std::stod(env(b, "probe " + subj, t)));
+      return std::nullopt;
+    }
+    if (subj.rfind("board.", 0) == 0) {
+      const std::string f = subj.substr(6);
+      if (f == "state") {
+        static const char* kStates[] = {"blocked", "user", "param"};
+        return Val(std::string(b.tel.main_state < 3 ? kStates[b.tel.main_state] : "?"));
+      }
+      if (f == "led") return Val(led_word(b.tel.led));
+      if (f == "ble") {
+        static const char* kBle[] = {"shutdown", "standby", "session", "connected"};   // by (S1 | S2 << 1)
+        return Val(std::string(kBle[b.tel.ble_status & 3U]));
+      }
+      if (f == "charger") return on(b.tel.charger);
+      if (f == "usb") return on(b.tel.usb);
+      if (f == "low_battery") return on(b.tel.low_battery);
+      if (f == "battery") return Val(static_cast<double>(b.tel.battery_mv));
+      if (f == "charge_current") return Val(static_cast<double>(b.tel.charge_ma));
+      if (f == "temperature") return Val(static_cast<double>(b.tel.temperature_mc));
+      if (f == "rotation") return Val(static_cast<double>(b.tel.rotation_mdeg));
+      return std::nullopt;
+    }
+    if (subj.rfind("param.", 0) == 0) {
+      const auto id = param_by_name(subj.substr(6));
+      const auto it = id ? b.params.find(static_cast<std::uint8_t>(*id)) : b.params.end();
+      if (it == b.params.end()) return Val(std::string("none"));
+      return Val(static_cast<double>(it->second));
+    }
+    if (subj.rfind("sub.", 0) == 0) {
+      std::string k = subj.substr(4);
+      if (k == "charge_current") k = "charge";
+      if (k == "temperature") k = "temp";
+      const auto it = b.subs.find(k);
+      if (it == b.subs.end()) return Val(std::string("none"));
+      return Val(static_cast<double>(it->second));
+    }
+    if (subj == "echo.count") return Val(static_cast<double>(b.echoes));
+    if (subj == "echo.x.id" || subj == "echo.y.id") return Val(static_cast<double>(b.ax[subj[5] == 'y' ? 1 : 0].status));
+    if (subj == "echo.x.data" || subj == "echo.y.data") return Val(static_cast<double>(b.ax[subj[5] == 'y' ? 1 : 0].data));
+    if (subj.rfind("tmc.", 0) == 0 || subj.rfind("fram.", 0) == 0 || subj == "watchdog_stops" || subj == "lost_steps") {
+      return Val(std::stod(env(b, "probe " + subj, t)));
+    }
+    const client::ClientCounters& c = b.client.counters();
+    if (subj == "gaps") return Val(static_cast<double>(c.lost));
+    if (subj == "rejected") return Val(static_cast<double>(c.rejected));
+    if (subj == "commands") return Val(static_cast<double>(c.sent));
+    if (subj == "echoes") return Val(static_cast<double>(c.matched));
+    return std::nullopt;
+  }
+
+  static bool compare(const Val& got, const sc::Expectation& e) {
+    if (const auto* w = std::get_if<std::string>(&e.value)) {
+      const auto* g = std::get_if<std::string>(&got);
+      if (g == nullptr) return false;
+      bool eq = *g == *w;
+      if (*w == "blocked" && e.subject.size() > 2 && e.subject.substr(1) == ".status") eq = g->rfind("blk_", 0) == 0;
+      if ((*w == "on" || *w == "off") && (*g == "on" || *g == "off")) eq = *g == *w;
+      return e.op == sc::Op::eq ? eq : !eq;
+    }
+    const auto* g = std::get_if<double>(&got);
+    if (g == nullptr) return false;
+    const double want = std::get<sc::Quantity>(e.value).value;
+    const double tol = e.tol ? e.tol->value : 0.0;
+    switch (e.op) {
+      case sc::Op::eq: return std::fabs(*g - want) <= tol + 1e-9;
+      case sc::Op::ne: return std::fabs(*g - want) > tol + 1e-9;
+      case sc::Op::lt: return *g < want + tol;
+      case sc::Op::le: return *g <= want + tol + 1e-9;
+      case sc::Op::gt: return *g > want - tol;
+      case sc::Op::ge: return *g >= want - tol - 1e-9;
+    }
+    return false;
+  }
+
+  static std::string show(const Val& v, const sc::Expectation& e) {
+    if (const auto* s = std::get_if<std::string>(&v)) return *s;
+    const double d = std::get<double>(v);
+    if (const auto* q = std::get_if<sc::Quantity>(&e.value)) {
+      const std::string u(sc::unit_name(q->dim));
+      return fmt(d) + (u.empty() ? "" : " " + u);
+    }
+    return fmt(d);
+  }
+
+  std::string describe(const sc::Expectation& e, std::uint32_t board) {
+    sc::Scenario one;
+    one.name = "x";
+    one.duration_us = 1;
+    one.expectations.push_back(e);
+    std::string text = sc::to_text(one);
+    const std::size_t p = text.find("expect ");
+    text = p == std::string::npos ? e.subject : text.substr(p);
+    while (!text.empty() && text.back() == '\n') text.pop_back();
+    return s_.name + ".scn:" + std::to_string(e.line) + ": board " + std::to_string(board) + ": " + text;
+  }
+
+  void evaluate(BoardPc& b, std::int64_t t, bool at_end) {
+    for (std::size_t k = 0; k < s_.expectations.size(); ++k) {
+      const sc::Expectation& e = s_.expectations[k];
+      if (!e.target.all && e.target.board != b.id) continue;
+      if (b.done[k]) continue;
+      bool check = false;
+      switch (e.when) {
+        case sc::When::at: check = !at_end && t >= e.t_us; break;
+        case sc::When::always: check = !at_end; break;
+        case sc::When::between: check = !at_end && t >= e.t_us && t <= e.t2_us; break;
+        case sc::When::by: check = !at_end && t <= e.t_us + opt_.step_us - 1; break;
+        case sc::When::end: check = at_end; break;
+      }
+      if (at_end && e.when == sc::When::by && !b.done[k]) {
+        fail(describe(e, b.id) + ": never held");
+        b.done[k] = true;
+        continue;
+      }
+      if (!check) {
+        if (e.when == sc::When::by && t > e.t_us && !b.done[k]) {
+          fail(describe(e, b.id) + ": did not hold by " + tstr(e.t_us) + " (last value " + last_[k] + ")");
+          b.done[k] = true;
+        }
+        continue;
+      }
+      const std::optional<Val> v = value(b, e.subject, t);
+      if (!v) {
+        fail(describe(e, b.id) + ": subject not available in the simulated PC");
+        b.done[k] = true;
+        continue;
+      }
+      const bool ok = compare(*v, e);
+      last_[k] = show(*v, e);
+      switch (e.when) {
+        case sc::When::at:
+        case sc::When::end:
+          b.done[k] = true;
+          if (!ok) fail(describe(e, b.id) + ": got " + show(*v, e) + " at " + tstr(t));
+          break;
+        case sc::When::by:
+          if (ok) b.done[k] = true;
+          break;
+        case sc::When::always:
+        case sc::When::between:
+          if (!ok) {
+            fail(describe(e, b.id) + ": got " + show(*v, e) + " at " + tstr(t));
+            b.done[k] = true;   // report the first violation only
+          }
+          break;
+      }
+    }
+  }
+
+  void finish(std::int64_t t) {
+    for (auto& bp : boards_) {
+      BoardPc& b = *bp;
+      const std::string viol = env(b, "probe violations", t);
+      if (!viol.empty() && viol[0] != '0') fail("safety (board-side monitor, every tick): board " + std::to_string(b.id) + ": " + viol);
+      b.verdict.lost_step_risks = static_cast<std::uint64_t>(std::stoull(env(b, "probe lost_steps", t)));
+      const client::ClientCounters& c = b.client.counters();
+      b.verdict.commands = c.sent;
+      b.verdict.echoes = c.matched;
+      b.verdict.lost = c.lost;
+      b.verdict.rejected = c.rejected;
+      b.verdict.malformed = c.malformed;
+      b.verdict.unexpected = c.unexpected;
+      b.verdict.duplicates = c.duplicated;
+    }
+    for (auto& bp : boards_) {
+      const std::uint64_t seq = bp->ep->send({}, static_cast<std::uint64_t>(t), dds::kFlagShutdown);
+      (void)wait_echo(*bp, seq);
+    }
+  }
+
+  const sc::Scenario& s_;
+  const RunOptions& opt_;
+  dds::ParticipantPtr pp_;
+  std::vector<std::unique_ptr<BoardPc>> boards_;
+  Mech mech_;
+  std::vector<codec::SubscriberId> subscribed_;
+  std::vector<std::uint8_t> param_slots_;
+  std::uint64_t frame_count_ = 0;
+  std::uint64_t round_trips_ = 0;
+  std::vector<std::string> failures_;
+  std::map<std::size_t, std::string> last_;
+};
+
+}  // namespace
+
+RunResult run_scenario(const sc::Scenario& s, const RunOptions& opt) {
+  dds::use_loopback_config(false);
+  std::optional<dds::DomainLease> lease;
+  std::uint32_t domain = 0;
+  if (opt.domain) {
+    domain = *opt.domain;
+  } else {
+    lease.emplace(dds::DomainLease::claim(1, dds::kMaxDomainId));
+    domain = lease->id();
+  }
+  std::string out_dir;
+  if (!opt.out_root.empty()) out_dir = opt.out_root + "/" + s.name;
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> threads;
+  std::vector<int> rc(opt.join ? 0 : s.boards, -1);
+  dds::ParticipantPtr board_pp;
+  if (!opt.join) {
+    board_pp = dds::make_participant(domain);
+    for (std::uint32_t b = 0; b < s.boards; ++b) {
+      BoardOptions bo;
+      bo.id = b;
+      bo.baud = s.baud;
+      if (b == 0) bo.out_dir = out_dir;
+      threads.emplace_back([&, bo] {
+        try {
+          rc[bo.id] = serve_board(board_pp, bo, std::chrono::seconds(60), &stop);
+        } catch (const std::exception& e) {
+          rc[bo.id] = 3;
+          if (opt.log != nullptr) *opt.log << "board " << bo.id << ": " << e.what() << '\n';
+        }
+      });
+    }
+  }
+  RunResult r;
+  try {
+    Pc pc(s, opt, domain);
+    r = pc.run();
+  } catch (...) {
+    stop = true;
+    for (auto& th : threads) th.join();
+    throw;
+  }
+  for (auto& th : threads) th.join();
+  for (std::size_t b = 0; b < rc.size(); ++b) {
+    if (rc[b] != 0) {
+      r.failures.push_back("board " + std::to_string(b) + " did not shut down cleanly (code " + std::to_string(rc[b]) + ")");
+      r.pass = false;
+    }
+  }
+  r.domain = domain;
+  r.out_dir = opt.join ? std::string() : out_dir;
+  if (!out_dir.empty()) {
+    std::filesystem::create_directories(out_dir);
+    std::ofstream(out_dir + "/report.txt") << format_report(s, r);
+  }
+  return r;
+}
+
+std::string format_report(const sc::Scenario& s, const RunResult& r) {
+  std::ostringstream o;
+  o << "scenario " << s.name << ": " << (r.pass ? "PASS" : "FAIL") << "  (virtual " << fmt(static_cast<double>(r.vtime_us) / 1e6)
+    << " s, wall " << fmt(r.wall_s) << " s, " << s.boards << " board(s), domain " << r.domain << ", " << r.bus_round_trips
+    << " bus round trips)\n";
+  for (const std::string& f : r.failures) o << "  FAIL " << f << '\n';
+  const std::size_t shown = std::min<std::size_t>(r.boards.size(), 4);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const BoardVerdict& b = r.boards[i];
+    o << "  board " << b.board << ": commands " << b.commands << ", echoes " << b.echoes << ", gaps (lost echoes) "
+      << b.lost << ", rejected " << b.rejected << ", malformed " << b.malformed << ", lost-step risks "
+      << b.lost_step_risks << '\n';
+    o << "    to board: frames " << b.to_board.frames << ", dropped " << b.to_board.dropped << ", corrupted "
+      << b.to_board.corrupted << ", duplicated " << b.to_board.duplicated << ", reordered " << b.to_board.reordered
+      << ", delayed " << b.to_board.delayed << ", cut " << b.to_board.cut << '\n';
+    o << "    to PC:    frames " << b.to_pc.frames << ", dropped " << b.to_pc.dropped << ", corrupted " << b.to_pc.corrupted
+      << ", duplicated " << b.to_pc.duplicated << ", reordered " << b.to_pc.reordered << ", delayed " << b.to_pc.delayed
+      << ", cut " << b.to_pc.cut << '\n';
+    if (!b.gaps.empty()) {
+      o << "    gaps seen by the PC:";
+      const std::size_t n = std::min<std::size_t>(b.gaps.size(), 12);
+      for (std::size_t k = 0; k < n; ++k) o << ' ' << fmt(static_cast<double>(b.gaps[k].t_us) / 1e6) << "s:" << b.gaps[k].lost;
+      if (b.gaps.size() > n) o << " ... (" << b.gaps.size() << " runs)";
+      o << '\n';
+    }
+  }
+  if (r.boards.size() > shown) o << "  ... and " << r.boards.size() - shown << " more boards\n";
+  return o.str();
+}
+
+}  // namespace ap::sim
