@@ -687,11 +687,18 @@ class Pc {
       return Val(std::stod(env(b, "probe " + subj, t)));
     }
     const client::ClientCounters& c = b.client.counters();
-    if (subj == "gaps") return Val(static_cast<double>(c.lost));
+    if (subj == "gaps") return Val(static_cast<double>(gaps(b)));
     if (subj == "rejected") return Val(static_cast<double>(c.rejected));
     if (subj == "commands") return Val(static_cast<double>(c.sent));
     if (subj == "echoes") return Val(static_cast<double>(c.matched));
     return std::nullopt;
+  }
+
+  // Echoes the PC missed: declared lost by a later echo, plus commands still unanswered at the
+  // end except the newest (sent in the last step, its echo cannot have arrived yet).
+  static std::uint32_t gaps(BoardPc& b) {
+    const std::size_t open = b.client.in_flight().size();
+    return b.client.counters().lost + static_cast<std::uint32_t>(open > 0 ? open - 1 : 0);
   }
 
   static bool compare(const Val& got, const sc::Expectation& e) {
@@ -802,7 +809,8 @@ class Pc {
       const client::ClientCounters& c = b.client.counters();
       b.verdict.commands = c.sent;
       b.verdict.echoes = c.matched;
-      b.verdict.lost = c.lost;
+      b.verdict.lost = gaps(b);
+      if (gaps(b) > c.lost) b.verdict.gaps.push_back({t, gaps(b) - c.lost});
       b.verdict.rejected = c.rejected;
       b.verdict.malformed = c.malformed;
       b.verdict.unexpected = c.unexpected;
