@@ -5,6 +5,9 @@ namespace ap::smt {
 ObligationList all_obligations() {
   ObligationList out;
   add_tmc2130_obligations(out);
+  add_axis_obligations(out);
+  add_timer_obligations(out);
+  add_storage_obligations(out);
   return out;
 }
 

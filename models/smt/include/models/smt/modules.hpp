@@ -5,5 +5,8 @@
 namespace ap::smt {
 
 void add_tmc2130_obligations(ObligationList& out);
+void add_axis_obligations(ObligationList& out);     // axis_obligations.cpp
+void add_timer_obligations(ObligationList& out);    // timer_obligations.cpp
+void add_storage_obligations(ObligationList& out);  // storage_obligations.cpp
 
 }  // namespace ap::smt

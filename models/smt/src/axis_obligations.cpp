@@ -1,0 +1,573 @@
+// Axis obligations (issue 7). Each states its claim, its method and its assumptions; the
+// same text is in docs/proofs.md. Step-level claims use the encoding with Kernels::Contract
+// (kernel results constrained only by the lemmas axis.dd.* / axis.best_fit.contract, which
+// are proved about the exact kernels in QF_NIA, and whose side conditions
+// axis.overflow.kernels proves, so the Int and bit-precise kernels agree).
+#include "models/smt/axis_obligations.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <sstream>
+
+#include "core/axis/watchdog.hpp"
+#include "models/smt/axis_encoding.hpp"
+#include "models/smt/axis_kernels.hpp"
+#include "models/smt/modules.hpp"
+#include "models/smt/obligation.hpp"
+
+namespace ap::smt {
+
+namespace ax = ap::axis;
+using axis::Encoder;
+using axis::Kernels;
+using axis::SymConfig;
+using axis::SymInput;
+using axis::SymOutput;
+using axis::SymState;
+
+// ---- case files and traces -------------------------------------------------------------
+
+std::string format_case(const ReplayCase& k) {
+  std::ostringstream o;
+  o << "# written by axisproof prove; replayed by properties/smt/smt_replay_test.cpp\n";
+  o << "obligation " << k.obligation << "\nkind " << k.kind << "\n";
+  if (k.kind == "timer") {
+    o << "timer " << k.timer_f << "\n";
+    return o.str();
+  }
+  const auto& c = k.config;
+  o << "config " << c.v_start << ' ' << c.v_slow << ' ' << c.v_fast << ' ' << c.accel << ' ' << c.soft_min << ' '
+    << c.soft_max << ' ' << c.home_travel << ' ' << c.home_position << "\n";
+  const auto& s = k.state;
+  o << "state " << int(s.phase) << ' ' << int(s.mode) << ' ' << int(s.dir) << ' ' << int(s.jog_dir) << ' '
+    << int(s.level) << ' ' << int(s.latch_min) << ' ' << int(s.latch_max) << ' ' << int(s.homed) << ' ' << s.pos
+    << ' ' << s.target << ' ' << s.v << ' ' << s.frac << "\n";
+  for (const auto& in : k.inputs) {
+    o << "input " << int(in.cmd.kind) << ' ' << int(in.cmd.dir) << ' ' << int(in.cmd.level) << ' ' << in.cmd.value
+      << ' ' << int(in.endstop_min) << ' ' << int(in.endstop_max) << ' ' << int(in.blocked) << ' '
+      << int(in.link_alive) << "\n";
+  }
+  o << "run " << k.run << "\n";
+  return o.str();
+}
+
+std::string write_case(const ReplayCase& k) {
+  const char* env = std::getenv("AP_PROVE_OUT");
+  const std::filesystem::path dir = env != nullptr ? std::filesystem::path(env) : std::filesystem::path("out/prove");
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  const std::filesystem::path file = dir / (k.obligation + ".case");
+  std::ofstream(file) << format_case(k);
+  return file.string();
+}
+
+std::string format_trace(const ax::Config& c, const std::vector<ax::State>& st, const std::vector<ax::Input>& in,
+                         const std::vector<ax::Output>& out) {
+  std::ostringstream o;
+  o << "    config v_start=" << c.v_start << " v_slow=" << c.v_slow << " v_fast=" << c.v_fast << " accel=" << c.accel
+    << " soft=[" << c.soft_min << "," << c.soft_max << "] home_travel=" << c.home_travel
+    << " home_position=" << c.home_position << "\n";
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const auto& s = st[i];
+    o << "    tick " << i << ": state phase=" << ax::phase_name(s.phase) << " mode=" << ax::mode_name(s.mode)
+      << " dir=" << int(s.dir) << " pos=" << s.pos << " target=" << s.target << " speed=" << s.v
+      << " (fine, 1/1000 ustep/s) frac=" << s.frac << " homed=" << int(s.homed) << " latch=" << int(s.latch_min)
+      << "/" << int(s.latch_max) << "\n";
+    if (i < in.size()) {
+      const auto& x = in[i];
+      o << "            input cmd=" << int(x.cmd.kind) << " dir=" << int(x.cmd.dir) << " level=" << int(x.cmd.level)
+        << " value=" << x.cmd.value << " endstops=" << int(x.endstop_min) << "/" << int(x.endstop_max)
+        << " blocked=" << int(x.blocked) << " link=" << int(x.link_alive);
+      if (i < out.size()) {
+        const auto& y = out[i];
+        o << "  ->  edge " << ax::edge_letter(y.edge) << " class=" << int(y.cls) << " steps=" << y.steps
+          << " dir=" << int(y.dir) << " step_speed=" << y.step_speed << " error=" << int(y.error);
+      }
+      o << "\n";
+    }
+  }
+  return o.str();
+}
+
+namespace {
+
+constexpr std::int64_t kDist = ax::kDistScale;
+
+z3::expr w(const z3::expr& e) { return z3::sext(e, 64 - e.get_sort().bv_size()); }
+z3::expr b8(z3::context& c, int v) { return c.bv_val(v, 8); }
+z3::expr b64(z3::context& c, std::int64_t v) { return c.bv_val(v, 64); }
+
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// hyps -> goal, with a custom counterexample renderer. logic: "QF_BV", "QF_NIA" or nullptr.
+Outcome decide(z3::context& c, const z3::expr& hyps, const z3::expr& goal, unsigned timeout_ms, const char* logic,
+               const std::function<std::string(const z3::model&)>& on_sat) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Outcome out;
+  z3::solver s = logic != nullptr ? z3::solver(c, logic) : z3::solver(c);
+  if (timeout_ms > 0) s.set("timeout", timeout_ms);
+  s.add(hyps);
+  s.add(!goal);
+  const z3::check_result r = s.check();
+  out.seconds = since(t0);
+  if (r == z3::unsat) {
+    out.verdict = Verdict::Proved;
+  } else if (r == z3::sat) {
+    out.verdict = Verdict::Failed;
+    out.counterexample = on_sat(s.get_model());
+  } else {
+    out.verdict = Verdict::Unknown;
+    out.counterexample = s.reason_unknown();
+  }
+  return out;
+}
+
+// ---- one-step (inductive-invariant) problems over the step encoding --------------------
+
+struct StepProblem {
+  z3::context& c;
+  Encoder enc;
+  SymConfig cfg;
+  SymState s0;
+  SymInput in;
+  Encoder::Result r;
+  StepProblem(z3::context& ctx, Kernels k)
+      : c(ctx), enc(ctx, k), cfg(enc.config("")), s0(enc.state("_0")), in(enc.input("_0")),
+        r(enc.step(s0, in, cfg)) {}
+
+  z3::expr s_fine() const { return w(cfg.v_start) * b64(c, ax::kSpeedScale); }
+  z3::expr valid() { return enc.config_valid(cfg) && enc.state_valid(s0); }
+
+  // Trace + replay case from a model: tick 0 from the model, then `run` more ticks of step().
+  std::string render(const std::string& name, const z3::model& m, int run) const {
+    const ax::Config kc = axis::eval_config(m, cfg);
+    const ax::State a = axis::eval_state(m, s0);
+    const ax::Input i0 = axis::eval_input(m, in);
+    const ax::State b = axis::eval_state(m, r.state);
+    const ax::Output o = axis::eval_output(m, r.out);
+    ReplayCase k;
+    k.obligation = name;
+    k.config = kc;
+    k.state = a;
+    k.inputs = {i0};
+    k.run = run;
+    const std::string path = write_case(k);
+    return "tick-by-tick trace (from the model of the encoding):\n" + format_trace(kc, {a, b}, {i0}, {o}) +
+           "    replay case written to " + path;
+  }
+};
+
+using Builder = std::function<Outcome(unsigned)>;
+
+void add(ObligationList& out, const std::string& name, const std::string& method, Builder b) {
+  out.push_back({name, method, std::move(b)});
+}
+
+z3::expr is_mode(z3::context& c, const z3::expr& m, ax::Mode x) { return m == b8(c, static_cast<int>(x)); }
+z3::expr is_phase(z3::context& c, const z3::expr& p, ax::Phase x) { return p == b8(c, static_cast<int>(x)); }
+z3::expr is_kind(z3::context& c, const z3::expr& k, ax::CmdKind x) { return k == b8(c, static_cast<int>(x)); }
+
+// ((t - pos) * dir) * kDist - frac: the fine distance to t in the direction of motion.
+z3::expr room_to(z3::context& c, const SymState& s, const z3::expr& t64) {
+  return (t64 - w(s.pos)) * w(s.dir) * b64(c, kDist) - w(s.frac);
+}
+
+// ---- NIA lemma problems over the kernels ------------------------------------------------
+
+struct KernelVars {
+  z3::context& c;
+  z3::expr v, s_us, s, a;
+  explicit KernelVars(z3::context& ctx)
+      : c(ctx), v(ctx.int_const("v")), s_us(ctx.int_const("v_start")), s(s_us * 1000), a(ctx.int_const("accel")) {}
+  z3::expr pre() const {
+    return v >= 0 && v <= ax::kFineSpeedMax && s_us >= 1 && s_us <= ax::kSpeedMax && a >= 1 && a <= ax::kAccelMax;
+  }
+  axis::Arith ar(axis::Checks* ch) const { return axis::Arith(c, axis::Sem::Int, ch, c.bool_val(true)); }
+  z3::expr dd(const z3::expr& x) const { return axis::stop_distance_fine(ar(nullptr), x, s, a); }
+};
+
+// A lemma counterexample (v, v_start, accel) as a motion scenario: a Position move at fine
+// speed v toward a target the reference stopping distance says is reachable.
+std::string kernel_case(const std::string& name, const z3::model& m, const KernelVars& k) {
+  const auto v = static_cast<std::int32_t>(m.eval(k.v, true).get_numeral_int64());
+  const auto s_us = static_cast<std::int32_t>(m.eval(k.s_us, true).get_numeral_int64());
+  const auto a = static_cast<std::int32_t>(m.eval(k.a, true).get_numeral_int64());
+  ReplayCase rc;
+  rc.obligation = name;
+  rc.config.v_start = s_us;
+  rc.config.v_slow = s_us;
+  const std::int32_t vu = (v + ax::kSpeedScale - 1) / ax::kSpeedScale;
+  rc.config.v_fast = vu > s_us ? vu : s_us;
+  rc.config.accel = a;
+  rc.config.soft_min = -ax::kPosMax;
+  rc.config.soft_max = ax::kPosMax;
+  rc.state.phase = v > 0 ? ax::Phase::Const : ax::Phase::Stop;
+  rc.state.mode = ax::Mode::Position;
+  rc.state.level = 1;
+  rc.state.homed = 1;
+  rc.state.dir = 1;
+  rc.state.pos = -ax::kPosMax / 2;
+  rc.state.v = v;
+  // A target beyond the true stopping distance plus one tick (sum computed independently).
+  const __int128 s = static_cast<__int128>(s_us) * 1000;
+  const __int128 mm = v > s ? (v - s + a - 1) / a - 1 : 0;
+  const __int128 dd = mm * v - static_cast<__int128>(a) * mm * (mm + 1) / 2;
+  const __int128 need = (dd + v) / kDist + 2;
+  rc.state.target = static_cast<std::int32_t>(rc.state.pos + (need < ax::kPosMax ? need : ax::kPosMax));
+  rc.run = 200000;
+  std::ostringstream o;
+  o << "v=" << v << " v_start=" << s_us << " (s_fine=" << s_us * 1000 << ") accel=" << a
+    << "\n    as a motion scenario: Position move at speed " << v << " toward target " << rc.state.target
+    << " from " << rc.state.pos << "\n    replay case written to " << write_case(rc);
+  return o.str();
+}
+
+}  // namespace
+
+void add_axis_obligations(ObligationList& out) {
+  // ---- kernel lemmas (QF_NIA over the exact kernels) ----------------------------------
+  add(out, "axis.overflow.kernels",
+      "QF_NIA: every intermediate of stop_distance_fine and best_fit in its C++ type's range "
+      "(int32/int64), divisions with dividend >= 0 and divisor > 0, for all args in range",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        axis::Checks ch;
+        const auto ar = k.ar(&ch);
+        (void)axis::stop_distance_fine(ar, k.v, k.s, k.a);
+        const z3::expr lo = c.int_const("lo"), hi = c.int_const("hi"), room = c.int_const("room");
+        (void)axis::best_fit(ar, lo, hi, room, k.s, k.a);
+        const z3::expr pre = k.pre() && lo >= 1 && lo <= hi && hi <= ax::kFineSpeedMax && room >= 1 &&
+                             room <= c.int_val(std::int64_t{3'000'000'000'000'000});
+        z3::expr all = c.bool_val(true);
+        for (const auto& x : ch) all = all && z3::implies(x.guard, x.cond);
+        std::vector<std::pair<std::string, z3::expr>> shown;
+        return decide(c, pre, all, t, nullptr, [&](const z3::model& m) {
+          std::string s;
+          for (const auto& x : ch) {
+            if (m.eval(x.guard && !x.cond, true).is_true()) s += "violated: " + x.name + "\n    ";
+          }
+          s += "lo=" + m.eval(lo, true).to_string() + " hi=" + m.eval(hi, true).to_string() +
+               " room=" + m.eval(room, true).to_string() + " ";
+          return s + kernel_case("axis.overflow.kernels", m, k);
+        });
+      });
+  add(out, "axis.dd.bound", "QF_NIA lemma: 0 <= DD(v) <= 1e18 for all v, v_start, accel in range",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        const z3::expr d = k.dd(k.v);
+        return decide(c, k.pre(), d >= 0 && d <= c.int_val(std::int64_t{1'000'000'000'000'000'000}), t, nullptr,
+                      [&](const z3::model& m) { return "DD=" + m.eval(d, true).to_string() + " " + kernel_case("axis.dd.bound", m, k); });
+      });
+  add(out, "axis.dd.zero", "QF_NIA lemma: v - accel <= s_fine -> DD(v) = 0 (last braking tick is at start speed)",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        const z3::expr d = k.dd(k.v);
+        return decide(c, k.pre() && k.v - k.a <= k.s, d == 0, t, nullptr,
+                      [&](const z3::model& m) { return "DD=" + m.eval(d, true).to_string() + " " + kernel_case("axis.dd.zero", m, k); });
+      });
+  add(out, "axis.dd.quotient_shift",
+      "QF_NIA lemma: x = v - s_fine - 1 >= accel -> (x - accel) / accel = x / accel - 1",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        const z3::expr x = k.v - k.s - 1;
+        return decide(c, k.pre() && x >= k.a, (x - k.a) / k.a == x / k.a - 1, t, nullptr,
+                      [&](const z3::model& m) { return kernel_case("axis.dd.quotient_shift", m, k); });
+      });
+  add(out, "axis.dd.recurrence",
+      "QF_NIA lemma (uses axis.dd.quotient_shift): v - accel > s_fine -> DD(v) = (v - accel) + DD(v - accel)",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        const z3::expr d = k.dd(k.v);
+        const z3::expr d2 = k.dd(k.v - k.a);
+        const z3::expr x = k.v - k.s - 1;
+        const z3::expr shift = (x - k.a) / k.a == x / k.a - 1;
+        return decide(c, k.pre() && k.v - k.a > k.s && shift, d == (k.v - k.a) + d2, t, nullptr, [&](const z3::model& m) {
+          return "DD(v)=" + m.eval(d, true).to_string() + " DD(v-a)=" + m.eval(d2, true).to_string() + " " +
+                 kernel_case("axis.dd.recurrence", m, k);
+        });
+      });
+  add(out, "axis.best_fit.piece_quotient",
+      "QF_NIA lemma: s_fine+1+m*a <= x <= s_fine+(m+1)*a -> (x - s_fine - 1) / a = m (x lies in piece m)",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        const z3::expr m = c.int_const("m");
+        const z3::expr hyp = k.pre() && m >= 0 && m <= ax::kFineSpeedMax && k.v >= k.s + 1 + m * k.a &&
+                             k.v <= k.s + (m + 1) * k.a;
+        return decide(c, hyp, (k.v - k.s - 1) / k.a == m, t, nullptr,
+                      [&](const z3::model& mm) { return kernel_case("axis.best_fit.piece_quotient", mm, k); });
+      });
+  add(out, "axis.best_fit.piece",
+      "QF_NIA lemma (uses piece_quotient): a candidate x of piece m (p_lo <= x <= min(num/(m+1), p_hi)) "
+      "satisfies x + DD(x) < room",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        const z3::expr m = c.int_const("m"), room = c.int_const("room");
+        const z3::expr x = k.v;
+        const z3::expr p_lo = k.s + 1 + m * k.a, p_hi = k.s + (m + 1) * k.a;
+        const z3::expr num = room - 1 + (k.a * m) * (m + 1) / 2;
+        const z3::expr q = num / (m + 1);
+        const z3::expr hyp = k.pre() && m >= 0 && m <= ax::kFineSpeedMax && room >= 1 &&
+                             room <= c.int_val(std::int64_t{3'000'000'000'000'000}) && num >= 0 && x <= q &&
+                             x >= p_lo && x <= p_hi && (x - k.s - 1) / k.a == m;
+        return decide(c, hyp, x + k.dd(x) < room, t, nullptr,
+                      [&](const z3::model& mm) { return "m=" + mm.eval(m, true).to_string() + " room=" + mm.eval(room, true).to_string() + " " + kernel_case("axis.best_fit.piece", mm, k); });
+      });
+  add(out, "axis.best_fit.contract",
+      "QF_UFNIA (DD uninterpreted, constrained by axis.best_fit.piece at the three unrolled pieces): "
+      "lo <= best_fit <= hi and can_stop(lo) -> can_stop(best_fit), for 1 <= lo <= hi <= 1e9, 1 <= room <= 3e15",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const KernelVars k(c);
+        const z3::expr lo = c.int_const("lo"), hi = c.int_const("hi"), room = c.int_const("room");
+        std::vector<axis::PieceTerms> pieces;
+        const z3::expr r = axis::best_fit(k.ar(nullptr), lo, hi, room, k.s, k.a, &pieces);
+        const z3::func_decl D = c.function("DDint", c.int_sort(), c.int_sort());
+        auto can = [&](const z3::expr& x) { return x <= k.s || x + D(x) < room; };
+        z3::expr lemma = c.bool_val(true);
+        for (const auto& p : pieces) {
+          lemma = lemma && z3::implies(p.m >= 0 && p.m <= ax::kFineSpeedMax && p.num >= 0 && p.x <= p.q &&
+                                           p.x >= p.p_lo && p.x <= p.p_hi,
+                                       p.x + D(p.x) < room);
+        }
+        const z3::expr pre = k.pre() && lo >= 1 && lo <= hi && hi <= ax::kFineSpeedMax && room >= 1 &&
+                             room <= c.int_val(std::int64_t{3'000'000'000'000'000});
+        return decide(c, pre && lemma, lo <= r && r <= hi && z3::implies(can(lo), can(r)), t, nullptr, [&](const z3::model& m) {
+          return "lo=" + m.eval(lo, true).to_string() + " hi=" + m.eval(hi, true).to_string() +
+                 " room=" + m.eval(room, true).to_string() + " best_fit=" + m.eval(r, true).to_string() + " " +
+                 kernel_case("axis.best_fit.contract", m, k);
+        });
+      });
+  add(out, "axis.narrowing",
+      "QF_BV, all bit patterns: x in [0, 2^31) -> x = zext(low 32 bits of x); for every uint32 y < 2^31 the "
+      "int64 x/1e6 and x%1e6 of x = zext(y) equal the 32-bit unsigned ones; x * d for d = 1, -1, 0 equals "
+      "x, -x, 0 (the proof encoding's rewrites, Kernels::Contract)",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const z3::expr x = c.bv_const("x", 64), y = c.bv_const("y", 32), q = c.bv_const("q", 32), r = c.bv_const("r", 32);
+        const z3::expr k64 = b64(c, kDist), k32 = c.bv_val(static_cast<int>(kDist), 32);
+        const z3::expr in31 = x >= b64(c, 0) && x <= b64(c, std::numeric_limits<std::int32_t>::max());
+        const z3::expr zx = z3::zext(y, 32);
+        const z3::expr y31 = z3::ult(y, c.bv_val(0x80000000U, 32));
+        const z3::expr claim = z3::implies(in31, x == z3::zext(x.extract(31, 0), 32)) &&
+                               z3::implies(y31, zx / k64 == z3::zext(z3::udiv(y, k32), 32) &&
+                                                    z3::srem(zx, k64) == z3::zext(z3::urem(y, k32), 32)) &&
+                               x * w(b8(c, 1)) == x && x * w(b8(c, -1)) == -x && x * w(b8(c, 0)) == b64(c, 0) &&
+                               z3::implies(z3::zext(y, 32) == z3::zext(q, 32) * k64 + z3::zext(r, 32) && z3::ult(r, k32),
+                                           q == z3::udiv(y, k32) && r == z3::urem(y, k32));
+        return decide(c, c.bool_val(true), claim, t, "QF_BV", [&](const z3::model& m) {
+          return "x=" + m.eval(x, true).to_string() + " y=" + m.eval(y, true).to_string();
+        });
+      });
+
+  // ---- step-level (QF_BV over the bit-precise step encoding, kernel contracts) ----------
+  add(out, "axis.overflow.step",
+      "QF_BV: no-overflow predicate of every add/sub/mul/div/cast in step() outside the kernels, and the kernel "
+      "preconditions at each call, for every config, state and input bit pattern",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        return decide(p.c, p.enc.all_contracts(), p.enc.no_overflow(), t, "QF_BV", [&](const z3::model& m) {
+          std::string s;
+          for (const auto& x : p.enc.checks) {
+            if (m.eval(x.guard && !x.cond, true).is_true()) s += "violated: " + x.name + "\n    ";
+          }
+          return s + p.render("axis.overflow.step", m, 0);
+        });
+      });
+  add(out, "axis.state_valid.inductive",
+      "QF_BV inductive invariant (1-induction): config_valid & state_valid(s) -> state_valid(step(s, in))",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        return decide(p.c, p.valid() && p.enc.all_contracts(), p.enc.state_valid(p.r.state), t, "QF_BV",
+                      [&](const z3::model& m) { return p.render("axis.state_valid.inductive", m, 0); });
+      });
+  add(out, "axis.table.total_deterministic",
+      "QF_BV exhaustive over all phase x class codes: exactly one of the 15 edge guards holds and edge_for "
+      "returns it; step() emits that edge for every valid state and input",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const z3::expr ph = c.bv_const("phase", 8), cl = c.bv_const("cls", 8);
+        const z3::expr e = axis::sym_edge_for(c, ph, cl);
+        z3::expr one = c.bool_val(true);
+        for (int i = 0; i < ax::kEdgeCount; ++i) {
+          const z3::expr gi = axis::sym_edge_guard(c, i, ph, cl);
+          one = one && (gi == (e == b8(c, i)));
+        }
+        StepProblem p(c, Kernels::Contract);
+        const z3::expr step_ok = z3::implies(p.valid() && p.enc.all_contracts(),
+                                             z3::ule(p.r.out.cls, 6) &&
+                                                 p.r.out.edge == axis::sym_edge_for(c, p.s0.phase, p.r.out.cls));
+        return decide(c, c.bool_val(true), z3::implies(z3::ule(ph, 3) && z3::ule(cl, 6), one) && step_ok, t, "QF_BV",
+                      [&](const z3::model& m) {
+                        return "phase=" + m.eval(ph, true).to_string() + " class=" + m.eval(cl, true).to_string() +
+                               " edge_for=" + m.eval(e, true).to_string() + "; " + p.render("axis.table.total_deterministic", m, 0);
+                      });
+      });
+  add(out, "axis.speed.max",
+      "QF_BV inductive invariant (1-induction), fixed config: v <= v_fast*1000 -> v' <= v_fast*1000 and "
+      "step_speed <= v_fast*1000; base: v = 0 at rest",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        const z3::expr vmax = w(p.cfg.v_fast) * b64(p.c, ax::kSpeedScale);
+        return decide(p.c, p.valid() && w(p.s0.v) <= vmax && p.enc.all_contracts(),
+                      w(p.r.state.v) <= vmax && w(p.r.out.step_speed) <= vmax, t, "QF_BV",
+                      [&](const z3::model& m) { return p.render("axis.speed.max", m, 2000); });
+      });
+  add(out, "axis.soft_limits",
+      "QF_BV inductive invariant (1-induction), fixed config, I: (mode=Home -> homed=0) & (mode=Position & "
+      "homed -> soft_min <= target <= soft_max): while homed, no tick moves pos past "
+      "soft_min/soft_max (pos' within [min(pos,soft_min), max(pos,soft_max)]); re-referencing by a Home command "
+      "excluded",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        z3::context& c = p.c;
+        auto inv = [&](const SymState& s) {
+          return z3::implies(is_mode(c, s.mode, ax::Mode::Home), s.homed == 0) &&
+                 z3::implies(is_mode(c, s.mode, ax::Mode::Position) && s.homed == 1,
+                             s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
+        };
+        const z3::expr hyp = p.valid() && inv(p.s0) && p.enc.all_contracts() && p.s0.homed == 1 &&
+                             !is_kind(c, p.in.kind, ax::CmdKind::Home);
+        const SymState& n = p.r.state;
+        const z3::expr hi = z3::ite(p.s0.pos > p.cfg.soft_max, p.s0.pos, p.cfg.soft_max);
+        const z3::expr lo = z3::ite(p.s0.pos < p.cfg.soft_min, p.s0.pos, p.cfg.soft_min);
+        const z3::expr goal = inv(n) && z3::implies(n.homed == 1, n.pos <= hi && n.pos >= lo);
+        const z3::expr base = z3::implies(p.s0.homed == 0 || !is_mode(c, p.s0.mode, ax::Mode::Home), inv(p.s0));
+        return decide(c, hyp, goal && base, t, "QF_BV", [&](const z3::model& m) { return p.render("axis.soft_limits", m, 2000); });
+      });
+  add(out, "axis.dir.reverse_at_start_speed",
+      "QF_BV, every valid state and input: DIR changes only when v <= s_fine (at rest: edge A), and never in a "
+      "tick that emits steps",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        const z3::expr goal = z3::implies(p.r.state.dir != p.s0.dir, w(p.s0.v) <= p.s_fine() && p.r.out.steps == 0) &&
+                              z3::implies(p.r.out.steps != 0, p.r.out.dir == p.s0.dir);
+        return decide(p.c, p.valid() && p.enc.all_contracts(), goal, t, "QF_BV",
+                      [&](const z3::model& m) { return p.render("axis.dir.reverse_at_start_speed", m, 2000); });
+      });
+  add(out, "axis.endstop.no_step_toward",
+      "QF_BV, every valid state and input: steps > 0 toward max -> max endstop input and latch off (min alike)",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        const z3::expr st = p.r.out.steps > 0;
+        const z3::expr goal =
+            z3::implies(st && p.r.out.dir > 0, p.in.endstop_max == 0 && p.s0.latch_max == 0) &&
+            z3::implies(st && p.r.out.dir < 0, p.in.endstop_min == 0 && p.s0.latch_min == 0);
+        return decide(p.c, p.valid() && p.enc.all_contracts(), goal, t, "QF_BV",
+                      [&](const z3::model& m) { return p.render("axis.endstop.no_step_toward", m, 0); });
+      });
+  add(out, "axis.position.no_overshoot",
+      "QF_BV inductive invariant (1-induction) I: Position & moving -> dir*(target-pos) >= 1 & "
+      "(v > s_fine -> DD(v) < room); fixed config; inputs: no command, or a move from rest, or a retarget "
+      "at least the stopping distance ahead in the direction of motion; blocked = 0. Claim: pos never "
+      "crosses the target; arrival step_speed <= s_fine",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        z3::context& c = p.c;
+        Encoder& enc = p.enc;
+        const z3::expr sf = p.s_fine();
+        const z3::expr a64 = w(p.cfg.accel);
+        auto inv = [&](const SymState& s) {
+          const z3::expr pos_mode = is_mode(c, s.mode, ax::Mode::Position);
+          const z3::expr moving = !is_phase(c, s.phase, ax::Phase::Stop);
+          const z3::expr in_lim = s.homed == 0 || (s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
+          const z3::expr ahead = (w(s.target) - w(s.pos)) * w(s.dir) >= b64(c, 1);
+          const z3::expr dd = enc.dd(w(s.v), sf, a64, c.bool_val(false));
+          return z3::implies(pos_mode, in_lim) &&
+                 z3::implies(pos_mode && moving, ahead && z3::implies(w(s.v) > sf, dd < room_to(c, s, w(s.target))));
+        };
+        const SymState& s = p.s0;
+        const SymInput& in = p.in;
+        const z3::expr t64 = z3::ite(is_kind(c, in.kind, ax::CmdKind::MoveAbs), w(in.value), w(s.pos) + w(in.value));
+        const z3::expr d_new = z3::ite(t64 > w(s.pos), b8(c, 1), z3::ite(t64 < w(s.pos), b8(c, -1), b8(c, 0)));
+        const z3::expr dd_now = enc.dd(w(s.v), sf, a64, c.bool_val(false));
+        const z3::expr reachable = is_phase(c, s.phase, ax::Phase::Stop) ||
+                                   (d_new == s.dir && (w(s.v) <= sf || dd_now < room_to(c, s, t64)));
+        const z3::expr move = is_kind(c, in.kind, ax::CmdKind::MoveAbs) || is_kind(c, in.kind, ax::CmdKind::MoveRel);
+        const z3::expr inputs = in.blocked == 0 && (is_kind(c, in.kind, ax::CmdKind::None) || (move && reachable));
+        const SymState& n = p.r.state;
+        const z3::expr tt = w(n.target);
+        const z3::expr was_pos = is_mode(c, n.mode, ax::Mode::Position) ||
+                                 (is_mode(c, s.mode, ax::Mode::Position) && is_kind(c, in.kind, ax::CmdKind::None));
+        const z3::expr no_cross = (tt - w(n.pos)) * (tt - w(s.pos)) >= b64(c, 0);
+        const z3::expr arrive = z3::implies(n.pos == n.target && s.pos != n.target, w(p.r.out.step_speed) <= sf);
+        const z3::expr goal = inv(n) && z3::implies(was_pos, no_cross && arrive);
+        const z3::expr hyp = p.valid() && inv(s) && inputs;
+        // Base case: the initial state (initial_state(): at rest, idle) satisfies I.
+        const z3::expr base = z3::implies(is_phase(c, s.phase, ax::Phase::Stop) && is_mode(c, s.mode, ax::Mode::Idle), inv(s));
+        return decide(c, hyp && enc.all_contracts(), goal && base, t, "QF_BV",
+                      [&](const z3::model& m) { return p.render("axis.position.no_overshoot", m, 200000); });
+      });
+  add(out, "axis.watchdog.timeout",
+      "QF_BV 1-induction over watchdog_tick (uint16) with a ghost tick count n: silent = min(n, 300), so the "
+      "link is reported lost exactly 300 ticks (3 command periods) after the last valid frame",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const z3::expr silent = c.bv_const("silent", 16), n = c.bv_const("n", 16), valid = c.bool_const("valid");
+        const z3::expr lim = c.bv_val(ax::kLinkTimeoutTicks, 16);
+        auto inv = [&](const z3::expr& sl, const z3::expr& nn) {
+          return z3::ule(nn, c.bv_val(1000, 16)) && sl == z3::ite(z3::ult(nn, lim), nn, lim);
+        };
+        const z3::expr s2 = axis::sym_watchdog_tick(c, silent, valid);
+        const z3::expr n2 = z3::ite(valid, c.bv_val(0, 16), z3::ite(z3::ult(n, c.bv_val(1000, 16)), n + 1, n));
+        const z3::expr claim = inv(s2, n2) && (axis::sym_link_alive(c, s2) == z3::ult(n2, lim));
+        const z3::expr base = inv(lim, lim);  // LinkWatchdog{} starts expired: as if 300 ticks silent
+        return decide(c, inv(silent, n), claim && base, t, "QF_BV", [&](const z3::model& m) {
+          return "silent=" + m.eval(silent, true).to_string() + " n=" + m.eval(n, true).to_string() +
+                 " valid=" + m.eval(valid, true).to_string();
+        });
+      });
+  add(out, "axis.watchdog.stop_begins",
+      "QF_BV, every valid state: link lost (link_alive = 0, no frame) while jogging -> mode Idle in the same "
+      "tick and the speed drops (v' < v) or the axis is stopped",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        z3::context& c = p.c;
+        const z3::expr hyp = p.valid() && p.enc.all_contracts() && is_mode(c, p.s0.mode, ax::Mode::Jog) &&
+                             p.in.link_alive == 0 && is_kind(c, p.in.kind, ax::CmdKind::None);
+        const z3::expr goal = is_mode(c, p.r.state.mode, ax::Mode::Idle) &&
+                              (is_phase(c, p.r.state.phase, ax::Phase::Stop) || p.r.state.v < p.s0.v);
+        return decide(c, hyp, goal, t, "QF_BV", [&](const z3::model& m) { return p.render("axis.watchdog.stop_begins", m, 2000); });
+      });
+  add(out, "axis.watchdog.stop_distance",
+      "QF_BV inductive invariant (1-induction) with ghost T (fine travel since the stop began) and "
+      "Phi(v) = v > s_fine ? DD(v) + s_fine : 0: T + Phi(v) <= Phi(v0); so the stop completes within "
+      "DD(v0) + one tick at start speed; inputs: no frame (no command), any endstop/blocked",
+      [](unsigned t) {
+        StepProblem p(shared_context(), Kernels::Contract);
+        z3::context& c = p.c;
+        const z3::expr sf = p.s_fine();
+        const z3::expr a64 = w(p.cfg.accel);
+        auto phi = [&](const SymState& s) {
+          return z3::ite(w(s.v) > sf, p.enc.dd(w(s.v), sf, a64, c.bool_val(false)) + sf, b64(c, 0));
+        };
+        const z3::expr T = c.bv_const("T", 64), phi0 = c.bv_const("Phi0", 64);
+        auto inv = [&](const SymState& s, const z3::expr& tt) {
+          // T <= Phi0 <= 2e18 and Phi <= 1e18 + 1e9 keep the ghost sums from wrapping.
+          return is_mode(c, s.mode, ax::Mode::Idle) && tt >= b64(c, 0) && tt <= phi0 && tt + phi(s) <= phi0;
+        };
+        const z3::expr hyp0 = p.valid() && is_kind(c, p.in.kind, ax::CmdKind::None) && phi0 >= b64(c, 0) &&
+                              phi0 <= b64(c, 2'000'000'000'000'000'000LL) && inv(p.s0, T);
+        const z3::expr T2 = T + w(p.r.out.step_speed);
+        const z3::expr base = z3::implies(phi0 == phi(p.s0) && is_mode(c, p.s0.mode, ax::Mode::Idle), inv(p.s0, b64(c, 0)));
+        const z3::expr goal = inv(p.r.state, T2) && base;
+        const z3::expr hyp = hyp0 && p.enc.all_contracts();  // after every dd() call above
+        return decide(c, hyp, goal, t, "QF_BV",
+                      [&](const z3::model& m) { return "T=" + m.eval(T, true).to_string() + " Phi0=" + m.eval(phi0, true).to_string() + " Phi(s)=" + m.eval(phi(p.s0), true).to_string() + " Phi(s')=" + m.eval(phi(p.r.state), true).to_string() + " inv'=" + m.eval(inv(p.r.state, T2), true).to_string() + " base=" + m.eval(base, true).to_string() + "\n    " + p.render("axis.watchdog.stop_distance", m, 200000); });
+      });
+}
+
+}  // namespace ap::smt

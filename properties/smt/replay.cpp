@@ -1,0 +1,154 @@
+#include "replay.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/axis/step_timer.hpp"
+
+namespace smt_replay {
+
+namespace ax = ap::axis;
+
+bool parse(const std::string& path, Case& out, std::string& error) {
+  std::ifstream f(path);
+  if (!f) {
+    error = "cannot open " + path;
+    return false;
+  }
+  out = Case{};
+  out.file = path;
+  std::string line;
+  while (std::getline(f, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream in(line);
+    std::string key;
+    in >> key;
+    if (key == "obligation") {
+      in >> out.obligation;
+    } else if (key == "kind") {
+      in >> out.kind;
+    } else if (key == "timer") {
+      in >> out.timer_f;
+    } else if (key == "run") {
+      in >> out.run;
+    } else if (key == "config") {
+      auto& c = out.config;
+      in >> c.v_start >> c.v_slow >> c.v_fast >> c.accel >> c.soft_min >> c.soft_max >> c.home_travel >> c.home_position;
+    } else if (key == "state") {
+      int p = 0, m = 0, d = 0, j = 0, l = 0, a = 0, b = 0, h = 0;
+      auto& s = out.state;
+      in >> p >> m >> d >> j >> l >> a >> b >> h >> s.pos >> s.target >> s.v >> s.frac;
+      s.phase = static_cast<ax::Phase>(p);
+      s.mode = static_cast<ax::Mode>(m);
+      s.dir = static_cast<std::int8_t>(d);
+      s.jog_dir = static_cast<std::int8_t>(j);
+      s.level = static_cast<std::uint8_t>(l);
+      s.latch_min = static_cast<std::uint8_t>(a);
+      s.latch_max = static_cast<std::uint8_t>(b);
+      s.homed = static_cast<std::uint8_t>(h);
+    } else if (key == "input") {
+      int k = 0, d = 0, l = 0, emin = 0, emax = 0, bl = 0, la = 0;
+      ax::Input x;
+      in >> k >> d >> l >> x.cmd.value >> emin >> emax >> bl >> la;
+      x.cmd.kind = static_cast<ax::CmdKind>(k);
+      x.cmd.dir = static_cast<std::int8_t>(d);
+      x.cmd.level = static_cast<std::uint8_t>(l);
+      x.endstop_min = static_cast<std::uint8_t>(emin);
+      x.endstop_max = static_cast<std::uint8_t>(emax);
+      x.blocked = static_cast<std::uint8_t>(bl);
+      x.link_alive = static_cast<std::uint8_t>(la);
+      out.inputs.push_back(x);
+    } else {
+      error = "unknown line: " + line;
+      return false;
+    }
+    if (in.fail()) {
+      error = "bad line: " + line;
+      return false;
+    }
+  }
+  return true;
+}
+
+namespace {
+
+// Reference stopping distance (fine units): the sum of the braking ticks above the start
+// speed, written independently of stop_distance_fine (ceil form, 128-bit).
+__int128 ref_dd(std::int64_t v, std::int64_t s, std::int64_t a) {
+  if (v <= s) return 0;
+  const __int128 m = (v - s + a - 1) / a - 1;
+  return m * v - static_cast<__int128>(a) * m * (m + 1) / 2;
+}
+
+std::string timer_violations(unsigned f) {
+  std::ostringstream o;
+  const auto t = ax::step_timer(f);
+  if (!t) return "no setting for an in-range frequency\n";
+  const std::uint64_t p = std::uint64_t{t->psc} + 1, a = std::uint64_t{t->arr} + 1;
+  const std::uint64_t clk = ax::kTimerClockHz;
+  // With 16-bit registers the realised frequency must bracket the request as documented.
+  if (!(f * p * a <= clk && clk < f * p * (a + 1))) o << "f=" << f << ": realised frequency outside [f, f*(ARR+2)/(ARR+1))\n";
+  if (f < 1221 && a < 32768) o << "f=" << f << ": ARR+1=" << a << " < 32768\n";
+  if (f >= 1221 && t->psc != 0) o << "f=" << f << ": PSC=" << t->psc << " != 0\n";
+  return o.str();
+}
+
+}  // namespace
+
+std::string violations(const Case& k) {
+  if (k.kind == "timer") return timer_violations(k.timer_f);
+  std::ostringstream o;
+  const ax::Config& c = k.config;
+  const bool cfg_ok = ax::config_valid(c);
+  const std::int64_t sf = std::int64_t{c.v_start} * ax::kSpeedScale;
+  const std::int64_t vmax = std::int64_t{c.v_fast} * ax::kSpeedScale;
+  ax::State s = k.state;
+  // The move is "reachable" when the true stopping distance plus this tick fits before the target.
+  const bool moving_pos = s.mode == ax::Mode::Position && s.phase != ax::Phase::Stop &&
+                          (static_cast<std::int64_t>(s.target) - s.pos) * s.dir >= 1;
+  const __int128 room = (static_cast<__int128>(s.target) - s.pos) * s.dir * ax::kDistScale - s.frac;
+  const bool reachable = moving_pos && (s.v <= sf || ref_dd(s.v, sf, c.accel) < room);
+  const std::int32_t target = s.target;
+  const std::int32_t start = s.pos;
+  const int total = static_cast<int>(k.inputs.size()) + k.run;
+  for (int t = 0; t < total; ++t) {
+    const ax::Input in = t < static_cast<int>(k.inputs.size()) ? k.inputs[static_cast<std::size_t>(t)] : ax::Input{};
+    const bool valid_before = cfg_ok && ax::state_valid(s);
+    const ax::StepResult r = ax::step(s, in, c);
+    const ax::State& n = r.state;
+    if (valid_before) {
+      if (!ax::state_valid(n)) o << "tick " << t << ": state_valid broken\n";
+      if (s.v <= vmax && (n.v > vmax || r.out.step_speed > vmax)) o << "tick " << t << ": speed " << n.v << " above v_fast\n";
+      if (n.dir != s.dir && (s.v > sf || r.out.steps != 0))
+        o << "tick " << t << ": DIR changed at speed " << s.v << " > start speed " << sf << "\n";
+      if (r.out.steps > 0 && r.out.dir > 0 && (in.endstop_max != 0 || s.latch_max != 0)) o << "tick " << t << ": step toward max endstop\n";
+      if (r.out.steps > 0 && r.out.dir < 0 && (in.endstop_min != 0 || s.latch_min != 0)) o << "tick " << t << ": step toward min endstop\n";
+      if (s.homed != 0 && n.homed != 0 && in.cmd.kind != ax::CmdKind::Home &&
+          (n.pos > std::max(s.pos, c.soft_max) || n.pos < std::min(s.pos, c.soft_min)))
+        o << "tick " << t << ": soft limit crossed, pos " << s.pos << " -> " << n.pos << "\n";
+      if (reachable && n.target == target && s.mode == ax::Mode::Position) {
+        if ((static_cast<std::int64_t>(target) - n.pos) * (static_cast<std::int64_t>(target) - start) < 0)
+          o << "tick " << t << ": overshoot: pos " << n.pos << " passed target " << target << "\n";
+        if (n.pos == target && s.pos != target && r.out.step_speed > sf)
+          o << "tick " << t << ": arrival at speed " << r.out.step_speed << " > start speed " << sf << "\n";
+      }
+    }
+    s = n;
+    if (t >= static_cast<int>(k.inputs.size()) && s.phase == ax::Phase::Stop) break;
+  }
+  return o.str();
+}
+
+std::vector<std::string> case_files(const std::string& dir) {
+  std::vector<std::string> out;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+    if (e.path().extension() == ".case") out.push_back(e.path().string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace smt_replay

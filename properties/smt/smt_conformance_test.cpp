@@ -1,0 +1,176 @@
+// Conformance before proof: the Z3 encoding of step() (models/smt/src/axis_encoding.cpp,
+// exact kernels) is evaluated on random concrete State/Input/Config and every output field
+// and every next-state field is compared with the C++ step(). A proof about the encoding
+// speaks about the code only while this passes: the two MUST change together.
+#include <gtest/gtest.h>
+#include <rapidcheck.h>
+#include <rapidcheck/gtest.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "core/axis/axis.hpp"
+#include "core/axis/step_timer.hpp"
+#include "models/smt/axis_encoding.hpp"
+#include "models/smt/axis_kernels.hpp"
+#include "models/smt/obligation.hpp"
+
+namespace {
+
+namespace ax = ap::axis;
+namespace sa = ap::smt::axis;
+
+// Values at and around every range edge, mixed with uniform draws.
+rc::Gen<std::int32_t> edgy(std::int32_t lo, std::int32_t hi) {
+  std::vector<std::int32_t> e{lo, hi};
+  if (lo < hi) e.push_back(lo + 1);
+  if (lo < hi) e.push_back(hi - 1);
+  return rc::gen::weightedOneOf<std::int32_t>(
+      {{3, rc::gen::inRange<std::int32_t>(lo, hi == INT32_MAX ? hi : hi + 1)}, {1, rc::gen::elementOf(e)}});
+}
+
+ax::Config gen_config() {
+  ax::Config c;
+  c.v_start = *edgy(1, 20000);
+  c.v_slow = c.v_start + *edgy(0, 20000);
+  c.v_fast = *rc::gen::oneOf(rc::gen::just(c.v_slow), rc::gen::inRange(c.v_slow, ax::kSpeedMax + 1),
+                              rc::gen::just(ax::kSpeedMax));
+  if (c.v_fast < c.v_slow) c.v_fast = c.v_slow;
+  c.accel = *edgy(1, ax::kAccelMax);
+  c.soft_min = *edgy(-ax::kPosMax, ax::kPosMax - 1);
+  c.soft_max = *rc::gen::inRange(c.soft_min + 1, ax::kPosMax + 1);
+  c.home_travel = *edgy(1, ax::kPosMax);
+  c.home_position = *edgy(-ax::kPosMax, ax::kPosMax);
+  // Now and then an invalid config (forced stop path).
+  if (*rc::gen::inRange(0, 20) == 0) {
+    c.v_start = *rc::gen::arbitrary<std::int32_t>();
+    c.accel = *rc::gen::arbitrary<std::int32_t>();
+  }
+  return c;
+}
+
+ax::State gen_state(const ax::Config& c) {
+  ax::State s;
+  s.phase = static_cast<ax::Phase>(*rc::gen::inRange(0, 4));
+  s.mode = static_cast<ax::Mode>(*rc::gen::inRange(0, 4));
+  s.dir = *rc::gen::element<std::int8_t>(1, -1);
+  s.jog_dir = *rc::gen::element<std::int8_t>(1, -1);
+  s.level = *rc::gen::inRange<std::uint8_t>(0, 2);
+  s.latch_min = *rc::gen::inRange<std::uint8_t>(0, 2);
+  s.latch_max = *rc::gen::inRange<std::uint8_t>(0, 2);
+  s.homed = *rc::gen::inRange<std::uint8_t>(0, 2);
+  // Positions near the limits and near each other, where the clamps act.
+  const std::int32_t anchor = *rc::gen::element(c.soft_min, c.soft_max, std::int32_t{0}, ax::kPosMax, -ax::kPosMax);
+  auto near = [&](std::int32_t a) {
+    const std::int64_t p = std::int64_t{a} + *rc::gen::oneOf(rc::gen::inRange<std::int32_t>(-3000, 3001),
+                                                               rc::gen::inRange<std::int32_t>(-2'000'000, 2'000'001));
+    return static_cast<std::int32_t>(p < -ax::kPosMax ? -ax::kPosMax : (p > ax::kPosMax ? ax::kPosMax : p));
+  };
+  s.pos = near(anchor);
+  s.target = *rc::gen::oneOf(rc::gen::just(near(s.pos)), rc::gen::just(near(anchor)), rc::gen::just(s.pos));
+  if (s.phase != ax::Phase::Stop) {
+    const std::int32_t vmax = c.v_fast > 0 && c.v_fast <= ax::kSpeedMax ? c.v_fast * ax::kSpeedScale : ax::kFineSpeedMax;
+    s.v = *rc::gen::oneOf(edgy(1, ax::kFineSpeedMax), edgy(1, vmax),
+                          rc::gen::just(c.v_start > 0 && c.v_start <= ax::kSpeedMax ? c.v_start * ax::kSpeedScale : 1));
+  }
+  s.frac = *edgy(0, ax::kDistScale - 1);
+  // Now and then an invalid state.
+  if (*rc::gen::inRange(0, 20) == 0) {
+    s.v = *rc::gen::arbitrary<std::int32_t>();
+    s.phase = static_cast<ax::Phase>(*rc::gen::inRange(0, 6));
+  }
+  return s;
+}
+
+ax::Input gen_input(const ax::State& s) {
+  ax::Input in;
+  in.cmd.kind = static_cast<ax::CmdKind>(*rc::gen::weightedOneOf<int>(
+      {{6, rc::gen::just(0)}, {6, rc::gen::inRange(1, 7)}, {1, rc::gen::inRange(0, 9)}}));
+  in.cmd.dir = *rc::gen::weightedOneOf<std::int8_t>({{8, rc::gen::element<std::int8_t>(1, -1)}, {1, rc::gen::arbitrary<std::int8_t>()}});
+  in.cmd.level = *rc::gen::weightedOneOf<std::uint8_t>({{8, rc::gen::inRange<std::uint8_t>(0, 2)}, {1, rc::gen::arbitrary<std::uint8_t>()}});
+  in.cmd.value = *rc::gen::oneOf(rc::gen::arbitrary<std::int32_t>(), rc::gen::inRange<std::int32_t>(-5000, 5001),
+                                 rc::gen::just(s.pos));
+  in.endstop_min = *rc::gen::weightedOneOf<std::uint8_t>({{6, rc::gen::just<std::uint8_t>(0)}, {1, rc::gen::just<std::uint8_t>(1)}});
+  in.endstop_max = *rc::gen::weightedOneOf<std::uint8_t>({{6, rc::gen::just<std::uint8_t>(0)}, {1, rc::gen::just<std::uint8_t>(1)}});
+  in.blocked = *rc::gen::weightedOneOf<std::uint8_t>({{8, rc::gen::just<std::uint8_t>(0)}, {1, rc::gen::just<std::uint8_t>(1)}});
+  in.link_alive = *rc::gen::weightedOneOf<std::uint8_t>({{6, rc::gen::just<std::uint8_t>(1)}, {1, rc::gen::just<std::uint8_t>(0)}});
+  return in;
+}
+
+void compare(const ax::State& s, const ax::Input& in, const ax::Config& c) {
+  const ax::StepResult want = ax::step(s, in, c);
+  const ax::StepResult got = sa::eval_step(ap::smt::shared_context(), s, in, c);
+  RC_ASSERT(static_cast<int>(got.out.steps) == static_cast<int>(want.out.steps));
+  RC_ASSERT(static_cast<int>(got.out.dir) == static_cast<int>(want.out.dir));
+  RC_ASSERT(static_cast<int>(got.out.edge) == static_cast<int>(want.out.edge));
+  RC_ASSERT(static_cast<int>(got.out.cls) == static_cast<int>(want.out.cls));
+  RC_ASSERT(static_cast<int>(got.out.error) == static_cast<int>(want.out.error));
+  RC_ASSERT(got.out.step_speed == want.out.step_speed);
+  RC_ASSERT(static_cast<int>(got.state.phase) == static_cast<int>(want.state.phase));
+  RC_ASSERT(static_cast<int>(got.state.mode) == static_cast<int>(want.state.mode));
+  RC_ASSERT(static_cast<int>(got.state.dir) == static_cast<int>(want.state.dir));
+  RC_ASSERT(static_cast<int>(got.state.jog_dir) == static_cast<int>(want.state.jog_dir));
+  RC_ASSERT(static_cast<int>(got.state.level) == static_cast<int>(want.state.level));
+  RC_ASSERT(static_cast<int>(got.state.latch_min) == static_cast<int>(want.state.latch_min));
+  RC_ASSERT(static_cast<int>(got.state.latch_max) == static_cast<int>(want.state.latch_max));
+  RC_ASSERT(static_cast<int>(got.state.homed) == static_cast<int>(want.state.homed));
+  RC_ASSERT(got.state.pos == want.state.pos);
+  RC_ASSERT(got.state.target == want.state.target);
+  RC_ASSERT(got.state.v == want.state.v);
+  RC_ASSERT(got.state.frac == want.state.frac);
+}
+
+RC_GTEST_PROP(smt_conformance, encoding_matches_step_on_random_arguments, ()) {
+  const ax::Config c = gen_config();
+  const ax::State s = gen_state(c);
+  const ax::Input in = gen_input(s);
+  compare(s, in, c);
+}
+
+// Trajectories: the states a real run reaches (exact-fit braking, arrivals, reversals).
+RC_GTEST_PROP(smt_conformance, encoding_matches_step_along_runs, ()) {
+  ax::Config c = gen_config();
+  if (!ax::config_valid(c)) c = ax::Config{};
+  c.accel = *rc::gen::inRange(c.v_start / 2 + 1, ax::kAccelMax + 1);  // short moves: few ticks
+  ax::State s{};
+  s.homed = 1;
+  s.pos = *rc::gen::inRange(c.soft_min, c.soft_max + 1);
+  ax::Input go{};
+  go.cmd.kind = ax::CmdKind::MoveAbs;
+  go.cmd.level = *rc::gen::inRange<std::uint8_t>(0, 2);
+  go.cmd.value = *rc::gen::inRange(c.soft_min, c.soft_max + 1);
+  compare(s, go, c);
+  s = ax::step(s, go, c).state;
+  for (int t = 0; t < 25 && s.phase != ax::Phase::Stop; ++t) {
+    ax::Input in{};
+    if (*rc::gen::inRange(0, 10) == 0) in = gen_input(s);
+    compare(s, in, c);
+    s = ax::step(s, in, c).state;
+  }
+}
+
+// The kernels on their own, including the range edges.
+RC_GTEST_PROP(smt_conformance, stop_distance_kernel_matches, ()) {
+  const std::int32_t v = *edgy(0, ax::kFineSpeedMax);
+  const std::int32_t s = *edgy(1000, ax::kFineSpeedMax);
+  const std::int32_t a = *edgy(1, ax::kAccelMax);
+  z3::context& ctx = ap::smt::shared_context();
+  const sa::Arith ar(ctx, sa::Sem::Bv, nullptr, ctx.bool_val(true));
+  const z3::expr e = sa::stop_distance_fine(ar, ctx.bv_val(static_cast<std::int64_t>(v), 64),
+                                            ctx.bv_val(static_cast<std::int64_t>(s), 64),
+                                            ctx.bv_val(static_cast<std::int64_t>(a), 64)).simplify();
+  RC_ASSERT(e.get_numeral_int64() == ax::stop_distance_fine(v, s, a));
+}
+
+RC_GTEST_PROP(smt_conformance, step_timer_kernel_matches, ()) {
+  const auto f = static_cast<std::uint32_t>(*edgy(1, static_cast<std::int32_t>(ax::kStepFreqMax)));
+  z3::context& ctx = ap::smt::shared_context();
+  const sa::Arith ar(ctx, sa::Sem::Bv, nullptr, ctx.bool_val(true), true);
+  const auto t = sa::step_timer(ar, ctx.bv_val(static_cast<std::uint64_t>(f), 64));
+  const auto want = ax::step_timer(f);
+  RC_ASSERT(want.has_value());
+  RC_ASSERT(t.psc.simplify().get_numeral_uint64() == want->psc);
+  RC_ASSERT(t.arr.simplify().get_numeral_uint64() == want->arr);
+}
+
+}  // namespace
