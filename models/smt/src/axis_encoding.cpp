@@ -102,8 +102,8 @@ z3::expr Encoder::dd_pre(const z3::expr& v, const z3::expr& s, const z3::expr& a
          vstart >= 1 && vstart <= b32(c, ax::kSpeedMax) && a >= b64(c, 1) && a <= b64(c, ax::kAccelMax);
 }
 
-z3::expr Encoder::dd_contract(const z3::expr& v, const z3::expr& s, const z3::expr& a) {
-  const z3::expr pre = dd_pre(v, s, a);
+z3::expr Encoder::dd_contract(const z3::expr& v, const z3::expr& s, const z3::expr& a, const z3::expr& guard) {
+  const z3::expr pre = dd_pre(v, s, a) || guard;
   const z3::expr f = dd_fun(lo32(v), lo32(s), lo32(a));
   const z3::expr va = v - a;
   const z3::expr f2 = dd_fun(lo32(va), lo32(s), lo32(a));
@@ -115,9 +115,11 @@ z3::expr Encoder::dd(const z3::expr& v, const z3::expr& s, const z3::expr& a, co
   if (kernels == Kernels::Exact) {
     return stop_distance_fine(Arith(c, Sem::Bv, &checks, guard), v, s, a);
   }
-  contracts.push_back(dd_contract(v, s, a));
-  // The lemmas hold under their preconditions; where step() calls the kernel they must hold.
+  // The lemmas hold under their preconditions; where step() calls the kernel they must hold
+  // (check dd.pre, proved by axis.overflow.step), so there the contract is asserted under the
+  // call's path condition, which spares the solver re-deriving the precondition.
   checks.push_back({"dd.pre", guard, dd_pre(v, s, a)});
+  contracts.push_back(dd_contract(v, s, a, guard));
   return z3::ite(v <= s || a <= b64(c, 0), b64(c, 0), dd_fun(lo32(v), lo32(s), lo32(a)));
 }
 
@@ -321,7 +323,7 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
     const z3::expr dd_bf = dd(w(bf), w(s_fine), w(a), c.bool_val(false));
     const z3::expr dd_lo = dd(w(lo), w(s_fine), w(a), c.bool_val(false));
     const z3::expr can_lo = lo <= s_fine || w(lo) + dd_lo < room;
-    contracts.push_back(z3::implies(pre, lo <= bf && bf <= hi &&
+    contracts.push_back(z3::implies(pre || (fw && !can_hi), lo <= bf && bf <= hi &&
                                              z3::implies(can_lo, bf <= s_fine || w(bf) + dd_bf < room)));
     checks.push_back({"best_fit.pre", fw && !can_hi, pre});
   }

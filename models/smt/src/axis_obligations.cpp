@@ -111,6 +111,8 @@ Outcome decide(z3::context& c, const z3::expr& hyps, const z3::expr& goal, unsig
                const std::function<std::string(const z3::model&)>& on_sat) {
   const auto t0 = std::chrono::steady_clock::now();
   Outcome out;
+  const char* env = std::getenv("AP_SMT_LOGIC");  // experiment knob
+  if (env != nullptr && logic != nullptr && std::string(logic) == "QF_BV") logic = env;
   z3::solver s = logic != nullptr ? z3::solver(c, logic) : z3::solver(c);
   if (timeout_ms > 0) s.set("timeout", timeout_ms);
   s.add(hyps);
@@ -366,11 +368,25 @@ void add_axis_obligations(ObligationList& out) {
                                z3::implies(y31, zx / k64 == z3::zext(z3::udiv(y, k32), 32) &&
                                                     z3::srem(zx, k64) == z3::zext(z3::urem(y, k32), 32)) &&
                                x * w(b8(c, 1)) == x && x * w(b8(c, -1)) == -x && x * w(b8(c, 0)) == b64(c, 0) &&
-                               z3::implies(z3::zext(y, 32) == z3::zext(q, 32) * k64 + z3::zext(r, 32) && z3::ult(r, k32),
-                                           q == z3::udiv(y, k32) && r == z3::urem(y, k32));
+                               z3::bvmul_no_overflow(z3::zext(q, 32), k64, false) &&
+                               z3::bvadd_no_overflow(z3::zext(q, 32) * k64, z3::zext(r, 32), false);
         return decide(c, c.bool_val(true), claim, t, "QF_BV", [&](const z3::model& m) {
           return "x=" + m.eval(x, true).to_string() + " y=" + m.eval(y, true).to_string();
         });
+      });
+
+  add(out, "axis.narrowing.division",
+      "QF_LIA: for integers 0 <= y < 2^31 and 0 <= q, r < 2^32, y = q*1e6 + r & r < 1e6 -> q = y div 1e6 & "
+      "r = y mod 1e6 (C++ / and % for y >= 0); with axis.narrowing (no wrap) the proof encoding's q, r are "
+      "step()'s quotient and remainder",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const z3::expr y = c.int_const("y"), q = c.int_const("q"), r = c.int_const("r");
+        const z3::expr k = c.int_val(static_cast<int>(kDist));
+        const z3::expr hyp = y >= 0 && y <= std::numeric_limits<std::int32_t>::max() && q >= 0 &&
+                             q <= c.int_val(std::int64_t{4294967295}) && r >= 0 && r < k && y == q * k + r;
+        return decide(c, hyp, q == y / k && r == z3::mod(y, k), t, nullptr,
+                      [&](const z3::model& m) { return "y=" + m.eval(y, true).to_string(); });
       });
 
   // ---- step-level (QF_BV over the bit-precise step encoding, kernel contracts) ----------

@@ -83,7 +83,7 @@ struct Encoder {
   z3::expr dd(const z3::expr& v64, const z3::expr& s64, const z3::expr& a64, const z3::expr& guard);
   // The DD contract instantiated at (v, s, a): what axis.dd.* prove about the exact kernel.
   z3::expr dd_pre(const z3::expr& v64, const z3::expr& s64, const z3::expr& a64) const;
-  z3::expr dd_contract(const z3::expr& v64, const z3::expr& s64, const z3::expr& a64);
+  z3::expr dd_contract(const z3::expr& v64, const z3::expr& s64, const z3::expr& a64, const z3::expr& guard);
 
   z3::expr mul_dir(const Arith& ar, const z3::expr& x64, const z3::expr& d8, const std::string& name);
   z3::expr div_dist(const Arith& ar, const z3::expr& x64, bool rem, const std::string& name);
