@@ -105,18 +105,10 @@ std::uint8_t led_code(const board::Board& b, Ble ble) {
 }
 
 std::string led_word(std::uint8_t code) {
-  std::string w;
-  if ((code & 7U) == 0) w = "off";
-  if ((code & 7U) == 1) w = "red";
-  if ((code & 7U) == 2) w = "green";
-  if ((code & 7U) == 3) w = "yellow";
-  if ((code & 7U) == 4) w = "blue";
-  if ((code & 7U) == 5) w = "magenta";
-  if ((code & 7U) == 6) w = "cyan";
-  if ((code & 7U) == 7) w = "white";
-  const unsigned blink = (code >> 4) & 3U;
-  if (blink == 1) w += "_slow";
-  if (blink == 2) w += "_fast";
+  static constexpr std::string_view kColours[] = {"off", "red", "green", "yellow", "blue", "magenta", "cyan", "white"};
+  static constexpr std::string_view kBlink[] = {"", "_slow", "_fast", "_fast"};
+  std::string w(kColours[code & 7U]);
+  w.append(kBlink[(code >> 4) & 3U]);
   return w;
 }
 
@@ -583,7 +575,7 @@ void SimBoard::finish() {
     std::vector<wf::MotionTrace> traces;
     for (std::size_t a = 0; a < board::kAxes; ++a) {
       wf::MotionTrace m;
-      m.label = a == 0 ? "X" : "Y";
+      m.label.assign(1, a == 0 ? 'X' : 'Y');   // not operator=(const char*): gcc 12 -O3 -Wrestrict false positive
       m.t_s = plot_t_[a];
       m.pos_mm = plot_pos_[a];
       m.speed_mm_s = plot_v_[a];
