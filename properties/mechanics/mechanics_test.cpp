@@ -207,3 +207,41 @@ TEST(mechanics_simulate, RejectsBadInput) {
   EXPECT_THROW(mech::Model{p}, std::invalid_argument);
   EXPECT_TRUE(mech::simulate(model, std::vector<mech::Step>{}).samples.empty());
 }
+
+// The incremental tracker gives exactly the batch result, whatever the flush times.
+RC_GTEST_PROP(mechanics_tracker, MatchesBatchSimulation, ()) {
+  const mech::Model model;
+  std::vector<mech::Step> steps;
+  double t0 = 0.0;
+  const auto moves = *rc::gen::inRange(1, 4);
+  for (int m = 0; m < moves; ++m) {
+    const double d = uniform(50, 300) / 1e3 * (*rc::gen::element(-1.0, 1.0));   // 0.05 .. 0.3 mm
+    const auto part = mech::trapezoid_steps(model, d, 0.0005, 0.005, 0.05, t0);
+    steps.insert(steps.end(), part.begin(), part.end());
+    t0 = steps.back().t + uniform(0, 300) / 1000.0;   // sometimes no rest: segments split on DIR only
+  }
+  const auto batch = mech::simulate(model, steps);
+  mech::Tracker tr(model);
+  std::vector<mech::Sample> got;
+  double next_flush = uniform(1, 100) / 1000.0;
+  for (const auto& s : steps) {
+    while (s.t > next_flush) {
+      auto part = tr.flush(next_flush);
+      got.insert(got.end(), part.begin(), part.end());
+      next_flush += uniform(1, 200) / 1000.0;
+    }
+    tr.step(s.t, s.dir);
+  }
+  auto rest = tr.finish();
+  got.insert(got.end(), rest.begin(), rest.end());
+  RC_ASSERT(got.size() == batch.samples.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    RC_ASSERT(std::abs(got[i].x - batch.samples[i].x) < 1e-12);
+    RC_ASSERT(got[i].t == batch.samples[i].t);
+    RC_ASSERT(std::abs(got[i].a - batch.samples[i].a) <= 1e-9 * (1.0 + std::abs(batch.samples[i].a)));
+    RC_ASSERT(got[i].risk == batch.samples[i].risk);
+  }
+  RC_ASSERT(tr.summary().segments == batch.summary.segments);
+  RC_ASSERT(tr.summary().steps == batch.summary.steps);
+  RC_ASSERT(std::abs(tr.position() - batch.samples.back().x) < 1e-12);
+}

@@ -131,6 +131,30 @@ struct Result {
 // Steps must be in non-decreasing time order; throws std::invalid_argument otherwise.
 Result simulate(const Model& model, std::span<const Step> steps);
 
+// Incremental form of simulate() for a simulated board that produces steps as virtual time runs:
+// feed steps in order; flush(now) returns the samples of every motion segment that has ended
+// (a DIR change, or no step for more than rest_gap before `now`). Segments are independent in
+// simulate(), so the samples are exactly those simulate() gives for the whole run; x continues
+// across flushes. finish() returns the rest.
+class Tracker {
+ public:
+  explicit Tracker(Model model) : model_(std::move(model)) {}
+  void step(double t, int dir);                    // throws std::invalid_argument like simulate()
+  std::vector<Sample> flush(double now);
+  std::vector<Sample> finish();
+  [[nodiscard]] const Summary& summary() const { return summary_; }   // over flushed samples
+  [[nodiscard]] double position() const { return position_; }         // after the last step fed
+
+ private:
+  std::vector<Sample> take(std::size_t n);
+  Model model_;
+  std::vector<Step> pending_;
+  double flushed_x_ = 0.0;    // carriage position at the start of pending_
+  double position_ = 0.0;
+  Summary summary_{};
+  bool any_margin_ = false;
+};
+
 // Step times of a trapezoidal (or triangular) move of `distance` metres from rest to rest,
 // starting at t0 with start speed v_start, cruise speed v_max and acceleration a (ideal, not
 // tick-quantised): the reference profile of tests and of docs/mechanics.md.
