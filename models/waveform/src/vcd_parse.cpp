@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <istream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
@@ -206,15 +207,13 @@ VcdDoc parse_vcd(std::istream& in) {
 
 namespace {
 
+// Level of a trace (sorted by time) at time t: the last change at or before t. Binary search, so
+// decoding a long run stays O(n log n).
 char level_at(const std::vector<std::pair<std::uint64_t, char>>& tr, double t) {
-  char v = 'x';
-  for (const auto& [ct, cv] : tr) {   // traces are short enough for a scan in tests
-    if (static_cast<double>(ct) > t) {
-      break;
-    }
-    v = cv;
-  }
-  return v;
+  const auto it = std::upper_bound(tr.begin(), tr.end(), t, [](double tt, const std::pair<std::uint64_t, char>& c) {
+    return tt < static_cast<double>(c.first);
+  });
+  return it == tr.begin() ? 'x' : std::prev(it)->second;
 }
 
 }  // namespace
@@ -271,11 +270,11 @@ std::vector<SpiTransfer> decode_spi(const VcdDoc& doc, std::string_view cs_id, b
     std::uint8_t bo = 0;
     std::uint8_t bi = 0;
     char prev = level_at(clk, static_cast<double>(start));
-    for (const auto& [t, v] : clk) {
-      if (t <= start || t >= end) {
-        prev = t <= start ? v : prev;
-        continue;
-      }
+    // Only the clock edges strictly inside (start, end): binary search for the first one.
+    auto first = std::upper_bound(clk.begin(), clk.end(), start,
+                                  [](std::uint64_t tt, const std::pair<std::uint64_t, char>& c) { return tt < c.first; });
+    for (auto it = first; it != clk.end() && it->first < end; ++it) {
+      const auto& [t, v] = *it;
       if (v == sample_level && prev != v) {
         const double ts = static_cast<double>(t);
         bo = static_cast<std::uint8_t>((bo << 1) | (level_at(mo, ts) == '1' ? 1 : 0));
