@@ -111,8 +111,6 @@ Outcome decide(z3::context& c, const z3::expr& hyps, const z3::expr& goal, unsig
                const std::function<std::string(const z3::model&)>& on_sat) {
   const auto t0 = std::chrono::steady_clock::now();
   Outcome out;
-  const char* env = std::getenv("AP_SMT_LOGIC");  // experiment knob
-  if (env != nullptr && logic != nullptr && std::string(logic) == "QF_BV") logic = env;
   z3::solver s = logic != nullptr ? z3::solver(c, logic) : z3::solver(c);
   if (timeout_ms > 0) s.set("timeout", timeout_ms);
   s.add(hyps);
