@@ -1,9 +1,12 @@
 # Project-wide compiler flags. Warnings are errors in dev/asan/release; sanitizers and
 # coverage are switched on per preset, for every target alike, so tests and code under
 # test are instrumented the same way.
-add_compile_options(-Wall -Wextra -Wshadow -Wconversion -Wsign-conversion -Wnon-virtual-dtor
-                    -Wold-style-cast -Wcast-align -Wunused -Woverloaded-virtual -Wpedantic -Wnull-dereference
-                    -Wimplicit-fallthrough)
+add_compile_options(-Wall -Wextra -Wshadow -Wconversion -Wsign-conversion -Wcast-align -Wunused -Wpedantic
+                    -Wnull-dereference -Wimplicit-fallthrough
+                    # C++-only warnings; the C files (idlc's generated DDS types) would print notices.
+                    $<$<COMPILE_LANGUAGE:CXX>:-Wnon-virtual-dtor>
+                    $<$<COMPILE_LANGUAGE:CXX>:-Wold-style-cast>
+                    $<$<COMPILE_LANGUAGE:CXX>:-Woverloaded-virtual>)
 if(AP_WERROR)
   add_compile_options(-Werror)
 endif()

@@ -142,7 +142,9 @@ struct StepProblem {
       : c(ctx), enc(ctx, k), cfg(enc.config("")), s0(enc.state("_0")), in(enc.input("_0")),
         r(enc.step(s0, in, cfg)) {}
 
-  z3::expr s_fine() const { return w(cfg.v_start) * b64(c, ax::kSpeedScale); }
+  // The code's own term: the int32 product v_start * kSpeedScale, widened (same hash-consed
+  // term as in the encoding, so the solver need not relate a 32- and a 64-bit product).
+  z3::expr s_fine() const { return w(cfg.v_start * c.bv_val(ax::kSpeedScale, 32)); }
   z3::expr valid() { return enc.config_valid(cfg) && enc.state_valid(s0); }
 
   // Trace + replay case from a model: tick 0 from the model, then `run` more ticks of step().
@@ -215,11 +217,13 @@ std::string kernel_case(const std::string& name, const z3::model& m, const Kerne
   rc.state.dir = 1;
   rc.state.pos = -ax::kPosMax / 2;
   rc.state.v = v;
-  // A target beyond the true stopping distance plus one tick (sum computed independently).
-  const __int128 s = static_cast<__int128>(s_us) * 1000;
-  const __int128 mm = v > s ? (v - s + a - 1) / a - 1 : 0;
-  const __int128 dd = mm * v - static_cast<__int128>(a) * mm * (mm + 1) / 2;
-  const __int128 need = (dd + v) / kDist + 2;
+  // A target beyond the true stopping distance plus one tick (sum computed independently, in
+  // 128 bits so this oracle cannot share an overflow with the code it checks).
+  __extension__ using wide = std::int64_t;
+  const wide s = static_cast<wide>(s_us) * 1000;
+  const wide mm = v > s ? (v - s + a - 1) / a - 1 : 0;
+  const wide dd = mm * v - static_cast<wide>(a) * mm * (mm + 1) / 2;
+  const wide need = (dd + v) / kDist + 2;
   rc.state.target = static_cast<std::int32_t>(rc.state.pos + (need < ax::kPosMax ? need : ax::kPosMax));
   rc.run = 200000;
   std::ostringstream o;
@@ -435,7 +439,7 @@ void add_axis_obligations(ObligationList& out) {
       "step_speed <= v_fast*1000; base: v = 0 at rest",
       [](unsigned t) {
         StepProblem p(shared_context(), Kernels::Contract);
-        const z3::expr vmax = w(p.cfg.v_fast) * b64(p.c, ax::kSpeedScale);
+        const z3::expr vmax = w(p.cfg.v_fast * p.c.bv_val(ax::kSpeedScale, 32));  // the code's int32 product
         return decide(p.c, p.valid() && w(p.s0.v) <= vmax && p.enc.all_contracts(),
                       w(p.r.state.v) <= vmax && w(p.r.out.step_speed) <= vmax, t, "QF_BV",
                       [&](const z3::model& m) { return p.render("axis.speed.max", m, 2000); });
