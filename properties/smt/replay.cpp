@@ -76,10 +76,10 @@ namespace {
 
 // Reference stopping distance (fine units): the sum of the braking ticks above the start
 // speed, written independently of stop_distance_fine (ceil form, 128-bit).
-__int128 ref_dd(std::int64_t v, std::int64_t s, std::int64_t a) {
+std::int64_t ref_dd(std::int64_t v, std::int64_t s, std::int64_t a) {
   if (v <= s) return 0;
-  const __int128 m = (v - s + a - 1) / a - 1;
-  return m * v - static_cast<__int128>(a) * m * (m + 1) / 2;
+  const std::int64_t m = (v - s + a - 1) / a - 1;
+  return m * v - static_cast<std::int64_t>(a) * m * (m + 1) / 2;
 }
 
 std::string timer_violations(unsigned f) {
@@ -108,7 +108,7 @@ std::string violations(const Case& k) {
   // The move is "reachable" when the true stopping distance plus this tick fits before the target.
   const bool moving_pos = s.mode == ax::Mode::Position && s.phase != ax::Phase::Stop &&
                           (static_cast<std::int64_t>(s.target) - s.pos) * s.dir >= 1;
-  const __int128 room = (static_cast<__int128>(s.target) - s.pos) * s.dir * ax::kDistScale - s.frac;
+  const std::int64_t room = (static_cast<std::int64_t>(s.target) - s.pos) * s.dir * ax::kDistScale - s.frac;
   const bool reachable = moving_pos && (s.v <= sf || ref_dd(s.v, sf, c.accel) < room);
   const std::int32_t target = s.target;
   const std::int32_t start = s.pos;

@@ -11,6 +11,7 @@
 
 #include "core/axis/axis.hpp"
 #include "core/axis/step_timer.hpp"
+#include "core/axis/watchdog.hpp"
 #include "models/smt/axis_encoding.hpp"
 #include "models/smt/axis_kernels.hpp"
 #include "models/smt/obligation.hpp"
@@ -171,6 +172,36 @@ RC_GTEST_PROP(smt_conformance, step_timer_kernel_matches, ()) {
   RC_ASSERT(want.has_value());
   RC_ASSERT(t.psc.simplify().get_numeral_uint64() == want->psc);
   RC_ASSERT(t.arr.simplify().get_numeral_uint64() == want->arr);
+}
+
+// The mirrored table and watchdog, exhaustively.
+TEST(smt_conformance, edge_table_and_guards_match) {
+  z3::context& ctx = ap::smt::shared_context();
+  for (int p = 0; p < 6; ++p) {
+    for (int k = 0; k < 9; ++k) {
+      const auto ph = static_cast<ax::Phase>(p);
+      const auto cl = static_cast<ax::Class>(k);
+      const z3::expr e = sa::sym_edge_for(ctx, ctx.bv_val(p, 8), ctx.bv_val(k, 8));
+      EXPECT_EQ(sa::ground_value(e), static_cast<int>(ax::edge_for(ph, cl))) << p << ' ' << k;
+      for (int g = 0; g < ax::kEdgeCount; ++g) {
+        const z3::expr gd = sa::sym_edge_guard(ctx, g, ctx.bv_val(p, 8), ctx.bv_val(k, 8)).simplify();
+        EXPECT_EQ(gd.is_true(), ax::edge_guard(static_cast<ax::Edge>(g), ph, cl)) << p << ' ' << k << ' ' << g;
+      }
+    }
+  }
+}
+
+TEST(smt_conformance, watchdog_matches) {
+  z3::context& ctx = ap::smt::shared_context();
+  for (unsigned s : {0U, 1U, 2U, 150U, 298U, 299U, 300U, 301U, 1000U, 65535U}) {
+    for (bool valid : {false, true}) {
+      const auto want = ax::watchdog_tick(ax::LinkWatchdog{static_cast<std::uint16_t>(s)}, valid);
+      const z3::expr got = sa::sym_watchdog_tick(ctx, ctx.bv_val(s, 16), ctx.bool_val(valid));
+      EXPECT_EQ(static_cast<std::uint16_t>(sa::ground_value(got)), want.silent) << s << ' ' << valid;
+      EXPECT_EQ(sa::sym_link_alive(ctx, ctx.bv_val(s, 16)).simplify().is_true(),
+                ax::link_alive(ax::LinkWatchdog{static_cast<std::uint16_t>(s)}));
+    }
+  }
 }
 
 }  // namespace

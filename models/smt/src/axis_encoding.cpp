@@ -98,7 +98,7 @@ z3::expr Encoder::state_valid(const SymState& s) {
 z3::expr Encoder::dd_pre(const z3::expr& v, const z3::expr& s, const z3::expr& a) const {
   // Preconditions of the lemmas (axis.dd.*): what a valid config and state guarantee.
   // s = v_start * 1000 with v_start the config's (kept by step()), 1 <= v_start <= kSpeedMax.
-  return v >= b64(c, 0) && v <= b64(c, ax::kFineSpeedMax) && s == w(vstart) * b64(c, ax::kSpeedScale) &&
+  return v >= b64(c, 0) && v <= b64(c, ax::kFineSpeedMax) && s == w(vstart * b32(c, ax::kSpeedScale)) &&
          vstart >= 1 && vstart <= b32(c, ax::kSpeedMax) && a >= b64(c, 1) && a <= b64(c, ax::kAccelMax);
 }
 
