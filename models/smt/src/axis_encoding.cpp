@@ -277,9 +277,14 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
       z3::ite(is_jog, z3::ite(motion_allowed(s, s.jog_dir), s.jog_dir, zero8),
       z3::ite(is_pos, z3::ite(pd != 0 && motion_allowed(s, pd), pd, zero8),
       z3::ite(is_home, z3::ite(s.pos > s.target && motion_allowed(s, m18), m18, zero8), zero8)));
-  const z3::expr g_pr = z3::ite(is_home, k.v_slow * b32(c, ax::kSpeedScale), level_speed * b32(c, ax::kSpeedScale));
+  // level_speed * kSpeedScale written as ite(level, v_fast * 1000, v_slow * 1000) (the same value):
+  // the proofs relate the three config products once (axis.config.fine_speeds).
+  const z3::expr vs_fine = k.v_slow * b32(c, ax::kSpeedScale);
+  const z3::expr vf_fine = k.v_fast * b32(c, ax::kSpeedScale);
+  const z3::expr g_pr = z3::ite(is_home, vs_fine, z3::ite(s.level != 0, vf_fine, vs_fine));
   const z3::expr g_bound = z3::ite(is_jog, hard_bound(s, s.jog_dir), z3::ite(is_pos || is_home, s.target, b32(c, 0)));
-  const z3::expr g_pass_ok = is_pos;
+  // Position and Home: the bound may be overrun above the start speed (axis.cpp goal_of, 861dc0a).
+  const z3::expr g_pass_ok = is_pos || is_home;
 
   const z3::expr s_fine = k.v_start * b32(c, ax::kSpeedScale);
   checks.push_back({"s_fine", ok, Arith(c, Sem::Bv, nullptr, T).fits32(w(k.v_start) * kScale)});
@@ -331,8 +336,8 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
   const z3::expr not_halt = run && !rev_halt;
   Arith A2(c, Sem::Bv, &checks, not_halt);
   const z3::expr raw = div_dist(A2, A2.add(w(s.frac), w(v_next0), "raw.frac+v"), false, "raw./kDist");
-  const z3::expr hb_pt = z3::ite(is_home && s.dir < 0, s.target, hard_bound(s, s.dir));
-  const z3::expr d_hard = mul_dir(A2, A2.sub(w(hb_pt), w(s.pos), "d_hard.-pos"), s.dir, "d_hard.*dir");
+  // d_hard: the hard bound only (the homing bound is a goal bound with pass_ok, not a hard one).
+  const z3::expr d_hard = mul_dir(A2, A2.sub(w(hard_bound(s, s.dir)), w(s.pos), "d_hard.-pos"), s.dir, "d_hard.*dir");
   const z3::expr same = g_dir == s.dir;
   Arith A5(c, Sem::Bv, &checks, not_halt && same);
   const z3::expr d_goal = z3::ite(same, mul_dir(A5, A5.sub(w(g_bound), w(s.pos), "d_goal.-pos"), s.dir, "d_goal.*dir"),
