@@ -112,6 +112,14 @@ std::string violations(const Case& k) {
   const bool reachable = moving_pos && (s.v <= sf || ref_dd(s.v, sf, c.accel) < room);
   const std::int32_t target = s.target;
   const std::int32_t start = s.pos;
+  // A stop with no frames (axis.watchdog.stop_distance): from Idle and moving, with no command
+  // in the case, the carriage travels at most DD(v0) + one tick at start speed, in fine units.
+  bool no_commands = true;
+  for (const auto& in : k.inputs) no_commands = no_commands && in.cmd.kind == ax::CmdKind::None;
+  const bool stopping = cfg_ok && ax::state_valid(s) && no_commands && s.mode == ax::Mode::Idle &&
+                        s.phase != ax::Phase::Stop;
+  const std::int64_t stop_budget = s.v > sf ? ref_dd(s.v, sf, c.accel) + sf : 0;
+  std::int64_t travelled = 0;
   const int total = static_cast<int>(k.inputs.size()) + k.run;
   for (int t = 0; t < total; ++t) {
     const ax::Input in = t < static_cast<int>(k.inputs.size()) ? k.inputs[static_cast<std::size_t>(t)] : ax::Input{};
@@ -134,6 +142,12 @@ std::string violations(const Case& k) {
         if (n.pos == target && s.pos != target && r.out.step_speed > sf)
           o << "tick " << t << ": arrival at speed " << r.out.step_speed << " > start speed " << sf << "\n";
       }
+    }
+    travelled += r.out.step_speed;
+    if (stopping && travelled > stop_budget) {
+      o << "tick " << t << ": stop not complete within its distance: " << travelled << " fine units > DD(v0) + s_fine = "
+        << stop_budget << "\n";
+      break;
     }
     s = n;
     if (t >= static_cast<int>(k.inputs.size()) && s.phase == ax::Phase::Stop) break;

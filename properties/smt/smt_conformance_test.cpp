@@ -98,9 +98,11 @@ ax::Input gen_input(const ax::State& s) {
   return in;
 }
 
-void compare(const ax::State& s, const ax::Input& in, const ax::Config& c) {
+// Both encodings: the bit-precise one (Sem::Bv) and its Int twin, which carries the
+// QF_UFLIA step proofs (speed.max, no_overshoot, watchdog.stop_distance).
+void compare_sem(const ax::State& s, const ax::Input& in, const ax::Config& c, sa::Sem sem) {
   const ax::StepResult want = ax::step(s, in, c);
-  const ax::StepResult got = sa::eval_step(ap::smt::shared_context(), s, in, c);
+  const ax::StepResult got = sa::eval_step(ap::smt::shared_context(), s, in, c, sem);
   RC_ASSERT(static_cast<int>(got.out.steps) == static_cast<int>(want.out.steps));
   RC_ASSERT(static_cast<int>(got.out.dir) == static_cast<int>(want.out.dir));
   RC_ASSERT(static_cast<int>(got.out.edge) == static_cast<int>(want.out.edge));
@@ -119,6 +121,13 @@ void compare(const ax::State& s, const ax::Input& in, const ax::Config& c) {
   RC_ASSERT(got.state.target == want.state.target);
   RC_ASSERT(got.state.v == want.state.v);
   RC_ASSERT(got.state.frac == want.state.frac);
+}
+
+void compare(const ax::State& s, const ax::Input& in, const ax::Config& c) {
+  compare_sem(s, in, c, sa::Sem::Bv);
+  // The Int twin equals step() where the side conditions hold, i.e. for a valid config and
+  // state (invalid ones take the forced-stop path, which has no arithmetic).
+  compare_sem(s, in, c, sa::Sem::Int);
 }
 
 RC_GTEST_PROP(smt_conformance, encoding_matches_step_on_random_arguments, ()) {
@@ -151,9 +160,9 @@ RC_GTEST_PROP(smt_conformance, encoding_matches_step_along_runs, ()) {
 }
 
 // Field-by-field comparison for deterministic cases (gtest, not rapidcheck).
-void expect_same(const ax::State& s, const ax::Input& in, const ax::Config& c, const char* what) {
+void expect_same_sem(const ax::State& s, const ax::Input& in, const ax::Config& c, const char* what, sa::Sem sem) {
   const ax::StepResult want = ax::step(s, in, c);
-  const ax::StepResult got = sa::eval_step(ap::smt::shared_context(), s, in, c);
+  const ax::StepResult got = sa::eval_step(ap::smt::shared_context(), s, in, c, sem);
   EXPECT_EQ(got.out.steps, want.out.steps) << what;
   EXPECT_EQ(int(got.out.dir), int(want.out.dir)) << what;
   EXPECT_EQ(ax::edge_letter(got.out.edge), ax::edge_letter(want.out.edge)) << what;
@@ -172,6 +181,10 @@ void expect_same(const ax::State& s, const ax::Input& in, const ax::Config& c, c
   EXPECT_EQ(got.state.target, want.state.target) << what;
   EXPECT_EQ(got.state.v, want.state.v) << what;
   EXPECT_EQ(got.state.frac, want.state.frac) << what;
+}
+void expect_same(const ax::State& s, const ax::Input& in, const ax::Config& c, const char* what) {
+  expect_same_sem(s, in, c, what, sa::Sem::Bv);
+  expect_same_sem(s, in, c, what, sa::Sem::Int);
 }
 
 // Regression (docs/proofs.md, "Findings"): a Home command while moving toward min above the

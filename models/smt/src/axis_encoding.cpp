@@ -9,6 +9,8 @@
 namespace ap::smt::axis {
 namespace {
 
+z3::expr zx(const z3::expr& e) { return z3::zext(e, 32); }
+
 // Enum values (core/axis/axis.hpp).
 enum : int {
   kStop = 0, kAccel = 1, kConst = 2, kDecel = 3,
@@ -22,12 +24,6 @@ enum : int {
 
 constexpr std::int64_t kDist = ax::kDistScale;
 
-z3::expr b8(z3::context& c, int v) { return c.bv_val(v, 8); }
-z3::expr b32(z3::context& c, std::int64_t v) { return c.bv_val(static_cast<int>(v), 32); }
-z3::expr b64(z3::context& c, std::int64_t v) { return c.bv_val(v, 64); }
-z3::expr w(const z3::expr& e) { return z3::sext(e, 64 - e.get_sort().bv_size()); }
-// static_cast<int32_t>(int64): the low 32 bits (lossless where the no-overflow checks hold).
-z3::expr lo32(const z3::expr& e) { return e.extract(31, 0); }
 
 SymState ite(const z3::expr& c, const SymState& a, const SymState& b) {
   return {z3::ite(c, a.phase, b.phase),         z3::ite(c, a.mode, b.mode),
@@ -40,66 +36,119 @@ SymState ite(const z3::expr& c, const SymState& a, const SymState& b) {
 
 }  // namespace
 
-Encoder::Encoder(z3::context& ctx, Kernels k)
-    : c(ctx), kernels(k), vstart(ctx.bv_val(0, 32)),
-      dd_fun(ctx.function("DD", ctx.bv_sort(32), ctx.bv_sort(32), ctx.bv_sort(32), ctx.bv_sort(64))) {}
+Encoder::Encoder(z3::context& ctx, Kernels k, Sem s)
+    : c(ctx), kernels(k), sem(s), vstart(s == Sem::Int ? ctx.int_val(0) : ctx.bv_val(0, 32)),
+      dd_fun(s == Sem::Int ? ctx.function("DDi", ctx.int_sort(), ctx.int_sort(), ctx.int_sort(), ctx.int_sort())
+                           : ctx.function("DD", ctx.bv_sort(32), ctx.bv_sort(32), ctx.bv_sort(32), ctx.bv_sort(64))) {}
+
+z3::expr Encoder::lit(std::int64_t v, unsigned bits) const {
+  if (sem == Sem::Int) return c.int_val(v);
+  return bits == 64 ? c.bv_val(v, 64) : c.bv_val(static_cast<int>(v), bits);
+}
+z3::expr Encoder::W(const z3::expr& e) const {
+  if (sem == Sem::Int) return e;
+  return z3::sext(e, 64 - e.get_sort().bv_size());
+}
+// static_cast<int32_t>(int64): the low 32 bits (lossless where the no-overflow checks hold, so
+// in Int the value itself).
+z3::expr Encoder::lo32(const z3::expr& e) const { return sem == Sem::Int ? e : e.extract(31, 0); }
+// Unsigned comparisons of uint8 fields (in Int the field's value is already 0..255).
+z3::expr Encoder::ule(const z3::expr& a, int b) const { return sem == Sem::Int ? a <= b : z3::ule(a, b); }
+z3::expr Encoder::ugt(const z3::expr& a, int b) const { return sem == Sem::Int ? a > b : z3::ugt(a, b); }
+z3::expr Encoder::var(const std::string& name, unsigned bits) const {
+  return sem == Sem::Int ? c.int_const(name.c_str()) : c.bv_const(name.c_str(), bits);
+}
+void Encoder::rec(const std::string& name, const z3::expr& guard, const std::function<z3::expr()>& cond) {
+  // The side conditions are bit-vector predicates, proved on the Bv encoding
+  // (axis.overflow.step); the Int encoding relies on that proof and records none.
+  if (sem == Sem::Bv) checks.push_back({name, guard, cond()});
+}
+Checks* Encoder::arith_checks() { return sem == Sem::Bv ? &checks : nullptr; }
+
+// The C++ type ranges of every field: implicit in the Bv widths, explicit in Int.
+namespace {
+z3::expr in_type(z3::context& c, const z3::expr& e, std::int64_t lo, std::int64_t hi) {
+  return e >= c.int_val(lo) && e <= c.int_val(hi);
+}
+z3::expr u8(z3::context& c, const z3::expr& e) { return in_type(c, e, 0, 255); }
+z3::expr i8(z3::context& c, const z3::expr& e) { return in_type(c, e, -128, 127); }
+z3::expr i32(z3::context& c, const z3::expr& e) {
+  return in_type(c, e, std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::max());
+}
+}  // namespace
+z3::expr Encoder::domain(const SymConfig& k) const {
+  if (sem == Sem::Bv) return c.bool_val(true);
+  return i32(c, k.v_start) && i32(c, k.v_slow) && i32(c, k.v_fast) && i32(c, k.accel) && i32(c, k.soft_min) &&
+         i32(c, k.soft_max) && i32(c, k.home_travel) && i32(c, k.home_position);
+}
+z3::expr Encoder::domain(const SymState& s) const {
+  if (sem == Sem::Bv) return c.bool_val(true);
+  return u8(c, s.phase) && u8(c, s.mode) && i8(c, s.dir) && i8(c, s.jog_dir) && u8(c, s.level) &&
+         u8(c, s.latch_min) && u8(c, s.latch_max) && u8(c, s.homed) && i32(c, s.pos) && i32(c, s.target) &&
+         i32(c, s.v) && i32(c, s.frac);
+}
+z3::expr Encoder::domain(const SymInput& in) const {
+  if (sem == Sem::Bv) return c.bool_val(true);
+  return u8(c, in.kind) && i8(c, in.cdir) && u8(c, in.clevel) && i32(c, in.value) && u8(c, in.endstop_min) &&
+         u8(c, in.endstop_max) && u8(c, in.blocked) && u8(c, in.link_alive);
+}
 
 SymConfig Encoder::config(const std::string& x) {
-  auto v = [&](const char* n) { return c.bv_const((std::string(n) + x).c_str(), 32); };
+  auto v = [&](const char* n) { return var(std::string(n) + x, 32); };
   return {v("v_start"), v("v_slow"), v("v_fast"), v("accel"), v("soft_min"), v("soft_max"), v("home_travel"),
           v("home_position")};
 }
 SymState Encoder::state(const std::string& x) {
-  auto v8 = [&](const char* n) { return c.bv_const((std::string(n) + x).c_str(), 8); };
-  auto v32 = [&](const char* n) { return c.bv_const((std::string(n) + x).c_str(), 32); };
+  auto v8 = [&](const char* n) { return var(std::string(n) + x, 8); };
+  auto v32 = [&](const char* n) { return var(std::string(n) + x, 32); };
   return {v8("phase"), v8("mode"), v8("dir"), v8("jog_dir"), v8("level"), v8("latch_min"), v8("latch_max"),
           v8("homed"), v32("pos"), v32("target"), v32("v"), v32("frac")};
 }
 SymInput Encoder::input(const std::string& x) {
-  auto v8 = [&](const char* n) { return c.bv_const((std::string(n) + x).c_str(), 8); };
-  return {v8("cmd_kind"), v8("cmd_dir"), v8("cmd_level"), c.bv_const(("cmd_value" + x).c_str(), 32),
+  auto v8 = [&](const char* n) { return var(std::string(n) + x, 8); };
+  return {v8("cmd_kind"), v8("cmd_dir"), v8("cmd_level"), var("cmd_value" + x, 32),
           v8("endstop_min"), v8("endstop_max"), v8("blocked"), v8("link_alive")};
 }
 SymConfig Encoder::config(const ax::Config& v) {
-  return {b32(c, v.v_start),  b32(c, v.v_slow),   b32(c, v.v_fast),      b32(c, v.accel),
-          b32(c, v.soft_min), b32(c, v.soft_max), b32(c, v.home_travel), b32(c, v.home_position)};
+  return {L32(v.v_start),  L32(v.v_slow),   L32(v.v_fast),      L32(v.accel),
+          L32(v.soft_min), L32(v.soft_max), L32(v.home_travel), L32(v.home_position)};
 }
 SymState Encoder::state(const ax::State& v) {
-  return {b8(c, static_cast<int>(v.phase)), b8(c, static_cast<int>(v.mode)), b8(c, v.dir), b8(c, v.jog_dir),
-          b8(c, v.level), b8(c, v.latch_min), b8(c, v.latch_max), b8(c, v.homed),
-          b32(c, v.pos), b32(c, v.target), b32(c, v.v), b32(c, v.frac)};
+  return {L8(static_cast<int>(v.phase)), L8(static_cast<int>(v.mode)), L8(v.dir), L8(v.jog_dir),
+          L8(v.level), L8(v.latch_min), L8(v.latch_max), L8(v.homed),
+          L32(v.pos), L32(v.target), L32(v.v), L32(v.frac)};
 }
 SymInput Encoder::input(const ax::Input& v) {
-  return {b8(c, static_cast<int>(v.cmd.kind)), b8(c, v.cmd.dir), b8(c, v.cmd.level), b32(c, v.cmd.value),
-          b8(c, v.endstop_min), b8(c, v.endstop_max), b8(c, v.blocked), b8(c, v.link_alive)};
+  return {L8(static_cast<int>(v.cmd.kind)), L8(v.cmd.dir), L8(v.cmd.level), L32(v.cmd.value),
+          L8(v.endstop_min), L8(v.endstop_max), L8(v.blocked), L8(v.link_alive)};
 }
 
 // config_valid(): int32 comparisons (signed).
 z3::expr Encoder::config_valid(const SymConfig& k) {
-  const z3::expr pmax = b32(c, ax::kPosMax);
-  return k.v_start >= 1 && k.v_start <= k.v_slow && k.v_slow <= k.v_fast && k.v_fast <= b32(c, ax::kSpeedMax) &&
-         k.accel >= 1 && k.accel <= b32(c, ax::kAccelMax) && k.soft_min >= -pmax && k.soft_min < k.soft_max &&
+  const z3::expr pmax = L32(ax::kPosMax);
+  return k.v_start >= 1 && k.v_start <= k.v_slow && k.v_slow <= k.v_fast && k.v_fast <= L32(ax::kSpeedMax) &&
+         k.accel >= 1 && k.accel <= L32(ax::kAccelMax) && k.soft_min >= -pmax && k.soft_min < k.soft_max &&
          k.soft_max <= pmax && k.home_travel >= 1 && k.home_travel <= pmax && k.home_position >= -pmax &&
          k.home_position <= pmax;
 }
 
 // state_valid(): uint8 fields compared unsigned, int8/int32 signed.
 z3::expr Encoder::state_valid(const SymState& s) {
-  const z3::expr pmax = b32(c, ax::kPosMax);
-  const z3::expr one = b8(c, 1);
-  const z3::expr m1 = b8(c, -1);
-  return z3::ule(s.phase, 3) && z3::ule(s.mode, 3) && (s.dir == one || s.dir == m1) &&
-         (s.jog_dir == one || s.jog_dir == m1) && z3::ule(s.level, 1) && z3::ule(s.latch_min, 1) &&
-         z3::ule(s.latch_max, 1) && z3::ule(s.homed, 1) && s.pos >= -pmax && s.pos <= pmax && s.target >= -pmax &&
-         s.target <= pmax && s.v >= 0 && s.v <= b32(c, ax::kFineSpeedMax) &&
-         ((s.v == 0) == (s.phase == b8(c, kStop))) && s.frac >= 0 && s.frac < b32(c, kDist);
+  const z3::expr pmax = L32(ax::kPosMax);
+  const z3::expr one = L8(1);
+  const z3::expr m1 = L8(-1);
+  return ule(s.phase, 3) && ule(s.mode, 3) && (s.dir == one || s.dir == m1) &&
+         (s.jog_dir == one || s.jog_dir == m1) && ule(s.level, 1) && ule(s.latch_min, 1) &&
+         ule(s.latch_max, 1) && ule(s.homed, 1) && s.pos >= -pmax && s.pos <= pmax && s.target >= -pmax &&
+         s.target <= pmax && s.v >= 0 && s.v <= L32(ax::kFineSpeedMax) &&
+         ((s.v == 0) == (s.phase == L8(kStop))) && s.frac >= 0 && s.frac < L32(kDist);
 }
 
 z3::expr Encoder::dd_pre(const z3::expr& v, const z3::expr& s, const z3::expr& a) const {
   // Preconditions of the lemmas (axis.dd.*): what a valid config and state guarantee.
   // s = v_start * 1000 with v_start the config's (kept by step()), 1 <= v_start <= kSpeedMax.
-  return v >= b64(c, 0) && v <= b64(c, ax::kFineSpeedMax) && s == w(vstart * b32(c, ax::kSpeedScale)) &&
-         vstart >= 1 && vstart <= b32(c, ax::kSpeedMax) && a >= b64(c, 1) && a <= b64(c, ax::kAccelMax);
+  return v >= L64(0) && v <= L64(ax::kFineSpeedMax) && s == W(vstart * L32(ax::kSpeedScale)) &&
+         vstart >= 1 && vstart <= L32(ax::kSpeedMax) && a >= L64(1) && a <= L64(ax::kAccelMax);
 }
 
 z3::expr Encoder::dd_contract(const z3::expr& v, const z3::expr& s, const z3::expr& a, const z3::expr& guard) {
@@ -107,20 +156,20 @@ z3::expr Encoder::dd_contract(const z3::expr& v, const z3::expr& s, const z3::ex
   const z3::expr f = dd_fun(lo32(v), lo32(s), lo32(a));
   const z3::expr va = v - a;
   const z3::expr f2 = dd_fun(lo32(va), lo32(s), lo32(a));
-  return z3::implies(pre, f >= b64(c, 0) && f <= b64(c, 1'000'000'000'000'000'000LL) &&
-                              z3::implies(va <= s, f == b64(c, 0)) && z3::implies(va > s, f == va + f2));
+  return z3::implies(pre, f >= L64(0) && f <= L64(1'000'000'000'000'000'000LL) &&
+                              z3::implies(va <= s, f == L64(0)) && z3::implies(va > s, f == va + f2));
 }
 
 z3::expr Encoder::dd(const z3::expr& v, const z3::expr& s, const z3::expr& a, const z3::expr& guard) {
   if (kernels == Kernels::Exact) {
-    return stop_distance_fine(Arith(c, Sem::Bv, &checks, guard), v, s, a);
+    return stop_distance_fine(Arith(c, sem, arith_checks(), guard), v, s, a);
   }
   // The lemmas hold under their preconditions; where step() calls the kernel they must hold
   // (check dd.pre, proved by axis.overflow.step), so there the contract is asserted under the
   // call's path condition, which spares the solver re-deriving the precondition.
-  checks.push_back({"dd.pre", guard, dd_pre(v, s, a)});
+  rec("dd.pre", guard, [&] { return dd_pre(v, s, a); });
   contracts.push_back(dd_contract(v, s, a, guard));
-  return z3::ite(v <= s || a <= b64(c, 0), b64(c, 0), dd_fun(lo32(v), lo32(s), lo32(a)));
+  return z3::ite(v <= s || a <= L64(0), L64(0), dd_fun(lo32(v), lo32(s), lo32(a)));
 }
 
 // x * static_cast<int64_t>(d) for an int8 d. Exact: the 64-bit product. Contract mode (proofs):
@@ -128,10 +177,10 @@ z3::expr Encoder::dd(const z3::expr& v, const z3::expr& s, const z3::expr& a, co
 // the solver needs no 64x64 multiplier. Sound: the two agree whenever the recorded side
 // conditions hold, and axis.overflow.step proves that they do (see docs/proofs.md).
 z3::expr Encoder::mul_dir(const Arith& ar, const z3::expr& x, const z3::expr& d8, const std::string& name) {
-  if (kernels == Kernels::Exact) return ar.mul(x, w(d8), name);
-  checks.push_back({name + ".narrow", ar.guard, d8 == b8(c, 1) || d8 == b8(c, -1) || d8 == b8(c, 0)});
-  checks.push_back({name, ar.guard, x != b64(c, std::numeric_limits<std::int64_t>::min())});
-  return z3::ite(d8 == b8(c, 1), x, z3::ite(d8 == b8(c, -1), -x, b64(c, 0)));
+  if (kernels == Kernels::Exact) return ar.mul(x, W(d8), name);
+  rec(name + ".narrow", ar.guard, [&] { return d8 == L8(1) || d8 == L8(-1) || d8 == L8(0); });
+  rec(name, ar.guard, [&] { return x != L64(std::numeric_limits<std::int64_t>::min()); });
+  return z3::ite(d8 == L8(1), x, z3::ite(d8 == L8(-1), -x, L64(0)));
 }
 
 // x / kDist (rem: x % kDist), C++ int64 truncating division. Contract mode: 0 <= x < 2^31 is
@@ -140,44 +189,54 @@ z3::expr Encoder::mul_dir(const Arith& ar, const z3::expr& x, const z3::expr& d8
 // pins q, r to the 32-bit unsigned quotient and remainder, which equal the int64 ones there.
 z3::expr Encoder::div_dist(const Arith& ar, const z3::expr& x, bool rem, const std::string& name) {
   if (kernels == Kernels::Exact) {
-    return rem ? z3::srem(x, b64(c, kDist)) : ar.div(x, b64(c, kDist), name);
+    if (sem == Sem::Int) return rem ? z3::mod(x, L64(kDist)) : ar.div(x, L64(kDist), name);  // x >= 0 here
+    return rem ? z3::srem(x, L64(kDist)) : ar.div(x, L64(kDist), name);
   }
-  checks.push_back({name + ".narrow", ar.guard, x >= b64(c, 0) && x <= b64(c, std::numeric_limits<std::int32_t>::max())});
+  rec(name + ".narrow", ar.guard, [&] { return x >= L64(0) && x <= L64(std::numeric_limits<std::int32_t>::max()); });
   for (const auto& d : divs) {
-    if (z3::eq(d.x, x)) return z3::zext(rem ? d.r : d.q, 32);
+    if (z3::eq(d.x, x)) return sem == Sem::Int ? (rem ? d.r : d.q) : zx(rem ? d.r : d.q);
   }
   const std::string id = std::to_string(divs.size());
+  if (sem == Sem::Int) {
+    // Floor division by a positive constant: x = q*kDist + r, 0 <= r < kDist (x >= 0 on the
+    // path, recorded above, so C++ truncation is the same).
+    const z3::expr q = c.int_const(("q!" + id).c_str());
+    const z3::expr r = c.int_const(("r!" + id).c_str());
+    contracts.push_back(x == q * L64(kDist) + r && r >= 0 && r < L64(kDist));
+    divs.push_back({x, q, r});
+    return rem ? r : q;
+  }
   const z3::expr q = c.bv_const(("q!" + id).c_str(), 32);
   const z3::expr r = c.bv_const(("r!" + id).c_str(), 32);
   const z3::expr x32 = lo32(x);
-  contracts.push_back(z3::zext(x32, 32) == z3::zext(q, 32) * b64(c, kDist) + z3::zext(r, 32) && z3::ult(r, b32(c, kDist)));
+  contracts.push_back(z3::zext(x32, 32) == z3::zext(q, 32) * L64(kDist) + z3::zext(r, 32) && z3::ult(r, L32(kDist)));
   divs.push_back({x, q, r});
-  return z3::zext(rem ? r : q, 32);
+  return zx(rem ? r : q);
 }
 
 Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymConfig& k) {
   const z3::expr T = c.bool_val(true);
-  const z3::expr one8 = b8(c, 1);
-  const z3::expr m18 = b8(c, -1);
-  const z3::expr zero8 = b8(c, 0);
-  const z3::expr pmax = b32(c, ax::kPosMax);
+  const z3::expr one8 = L8(1);
+  const z3::expr m18 = L8(-1);
+  const z3::expr zero8 = L8(0);
+  const z3::expr pmax = L32(ax::kPosMax);
   const z3::expr cfg_ok = config_valid(k);
   const z3::expr ok = cfg_ok && state_valid(s0);
   vstart = k.v_start;
 
   // ---- invalid config or state: forced stop ---------------------------------------------
   SymState fs = s0;
-  fs.phase = b8(c, kStop);
-  fs.mode = b8(c, kIdle);
-  fs.v = b32(c, 0);
-  fs.frac = b32(c, 0);
+  fs.phase = L8(kStop);
+  fs.mode = L8(kIdle);
+  fs.v = L32(0);
+  fs.frac = L32(0);
   fs.dir = z3::ite(s0.dir < 0, m18, one8);
-  SymOutput fo{b32(c, 0), fs.dir, z3::ite(s0.phase != b8(c, kStop) && z3::ule(s0.phase, 3), b8(c, gX), b8(c, gI)),
-               b8(c, cEStop), z3::ite(cfg_ok, b8(c, eBadState), b8(c, eBadConfig)), b32(c, 0)};
+  SymOutput fo{L32(0), fs.dir, z3::ite(s0.phase != L8(kStop) && ule(s0.phase, 3), L8(gX), L8(gI)),
+               L8(cEStop), z3::ite(cfg_ok, L8(eBadState), L8(eBadConfig)), L32(0)};
 
   // ---- valid path ------------------------------------------------------------------------
   SymState s = s0;
-  s.mode = z3::ite(in.blocked != 0, b8(c, kIdle), s.mode);
+  s.mode = z3::ite(in.blocked != 0, L8(kIdle), s.mode);
 
   auto endstop_active = [&](const SymState& st, const z3::expr& d) {
     return z3::ite(d > 0, in.endstop_max != 0 || st.latch_max != 0, in.endstop_min != 0 || st.latch_min != 0);
@@ -192,86 +251,86 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
 
   // apply_command
   z3::expr estop = c.bool_val(false);
-  z3::expr err = b8(c, eNone);
+  z3::expr err = L8(eNone);
   {
     const z3::expr kind = in.kind;
-    const z3::expr moving_cmd = kind == b8(c, kCmdJog) || kind == b8(c, kMoveAbs) || kind == b8(c, kMoveRel) ||
-                                kind == b8(c, kCmdHome);
-    const z3::expr bad_level = moving_cmd && z3::ugt(in.clevel, 1);
+    const z3::expr moving_cmd = kind == L8(kCmdJog) || kind == L8(kMoveAbs) || kind == L8(kMoveRel) ||
+                                kind == L8(kCmdHome);
+    const z3::expr bad_level = moving_cmd && ugt(in.clevel, 1);
     const z3::expr blocked = !bad_level && moving_cmd && in.blocked != 0;
     const z3::expr go = !bad_level && !blocked;
     // Jog
     const z3::expr jog_bad_dir = in.cdir != one8 && in.cdir != m18;
     const z3::expr jog_toward = !jog_bad_dir && endstop_active(s, in.cdir);
     SymState sj = s;
-    sj.mode = b8(c, kJog);
+    sj.mode = L8(kJog);
     sj.jog_dir = in.cdir;
     sj.level = in.clevel;
     // MoveAbs / MoveRel: |pos| <= 1e9, value int32 -> int64 sum
-    const z3::expr is_abs = kind == b8(c, kMoveAbs);
-    const z3::expr is_move = is_abs || kind == b8(c, kMoveRel);
-    const z3::expr t = z3::ite(is_abs, w(in.value), w(s.pos) + w(in.value));
-    checks.push_back({"cmd.pos+value", ok && go && is_move && s.homed != 0 && !is_abs,
-                      z3::bvadd_no_overflow(w(s.pos), w(in.value), true) && z3::bvadd_no_underflow(w(s.pos), w(in.value))});
+    const z3::expr is_abs = kind == L8(kMoveAbs);
+    const z3::expr is_move = is_abs || kind == L8(kMoveRel);
+    const z3::expr t = z3::ite(is_abs, W(in.value), W(s.pos) + W(in.value));
+    rec("cmd.pos+value", ok && go && is_move && s.homed != 0 && !is_abs, [&] { return
+                      z3::bvadd_no_overflow(W(s.pos), W(in.value), true) && z3::bvadd_no_underflow(W(s.pos), W(in.value)); });
     const z3::expr not_homed = s.homed == 0;
-    const z3::expr out_of = !not_homed && (t < w(k.soft_min) || t > w(k.soft_max));
-    const z3::expr d = z3::ite(t > w(s.pos), one8, z3::ite(t < w(s.pos), m18, zero8));
+    const z3::expr out_of = !not_homed && (t < W(k.soft_min) || t > W(k.soft_max));
+    const z3::expr d = z3::ite(t > W(s.pos), one8, z3::ite(t < W(s.pos), m18, zero8));
     const z3::expr move_toward = !not_homed && !out_of && d != 0 && endstop_active(s, d);
-    checks.push_back({"cmd.target_cast", ok && go && is_move && !not_homed && !out_of && !move_toward,
-                      t >= b64(c, std::numeric_limits<std::int32_t>::min()) &&
-                          t <= b64(c, std::numeric_limits<std::int32_t>::max())});
+    rec("cmd.target_cast", ok && go && is_move && !not_homed && !out_of && !move_toward, [&] { return
+                      t >= L64(std::numeric_limits<std::int32_t>::min()) &&
+                          t <= L64(std::numeric_limits<std::int32_t>::max()); });
     SymState sm = s;
-    sm.mode = b8(c, kPosition);
+    sm.mode = L8(kPosition);
     sm.target = lo32(t);
     sm.level = in.clevel;
     // Home
-    const z3::expr on_min = s.phase == b8(c, kStop) && endstop_active(s, m18);
+    const z3::expr on_min = s.phase == L8(kStop) && endstop_active(s, m18);
     SymState sh0 = s;
     sh0.pos = k.home_position;
     sh0.homed = one8;
-    sh0.mode = b8(c, kIdle);
+    sh0.mode = L8(kIdle);
     SymState sh = s;
-    sh.mode = b8(c, kHome);
+    sh.mode = L8(kHome);
     sh.homed = zero8;
     sh.level = zero8;
-    const z3::expr hb = w(s.pos) - w(k.home_travel);
-    checks.push_back({"cmd.pos-home_travel", ok && go && kind == b8(c, kCmdHome) && !on_min,
-                      z3::bvsub_no_overflow(w(s.pos), w(k.home_travel)) &&
-                          z3::bvsub_no_underflow(w(s.pos), w(k.home_travel), true)});
-    sh.target = z3::ite(hb < b64(c, -ax::kPosMax), -pmax, lo32(hb));
+    const z3::expr hb = W(s.pos) - W(k.home_travel);
+    rec("cmd.pos-home_travel", ok && go && kind == L8(kCmdHome) && !on_min, [&] { return
+                      z3::bvsub_no_overflow(W(s.pos), W(k.home_travel)) &&
+                          z3::bvsub_no_underflow(W(s.pos), W(k.home_travel), true); });
+    sh.target = z3::ite(hb < L64(-ax::kPosMax), -pmax, lo32(hb));
     SymState si = s;
-    si.mode = b8(c, kIdle);
+    si.mode = L8(kIdle);
 
-    const z3::expr known = kind == b8(c, kNone) || kind == b8(c, kCmdStop) || kind == b8(c, kCmdEStop) ||
+    const z3::expr known = kind == L8(kNone) || kind == L8(kCmdStop) || kind == L8(kCmdEStop) ||
                            moving_cmd;
     SymState r = s;
-    r = ite(go && (kind == b8(c, kCmdStop) || kind == b8(c, kCmdEStop)), si, r);
-    r = ite(go && kind == b8(c, kCmdJog) && !jog_bad_dir && !jog_toward, sj, r);
+    r = ite(go && (kind == L8(kCmdStop) || kind == L8(kCmdEStop)), si, r);
+    r = ite(go && kind == L8(kCmdJog) && !jog_bad_dir && !jog_toward, sj, r);
     r = ite(go && is_move && !not_homed && !out_of && !move_toward, sm, r);
-    r = ite(go && kind == b8(c, kCmdHome), ite(on_min, sh0, sh), r);
-    estop = go && kind == b8(c, kCmdEStop);
-    err = z3::ite(bad_level, b8(c, eBadCommand),
-          z3::ite(blocked, b8(c, eBlocked),
-          z3::ite(!known, b8(c, eBadCommand),
-          z3::ite(kind == b8(c, kCmdJog) && jog_bad_dir, b8(c, eBadCommand),
-          z3::ite(kind == b8(c, kCmdJog) && jog_toward, b8(c, eTowardEndstop),
-          z3::ite(is_move && not_homed, b8(c, eNotHomed),
-          z3::ite(is_move && out_of, b8(c, eOutOfLimits),
-          z3::ite(is_move && move_toward, b8(c, eTowardEndstop), b8(c, eNone)))))))));
+    r = ite(go && kind == L8(kCmdHome), ite(on_min, sh0, sh), r);
+    estop = go && kind == L8(kCmdEStop);
+    err = z3::ite(bad_level, L8(eBadCommand),
+          z3::ite(blocked, L8(eBlocked),
+          z3::ite(!known, L8(eBadCommand),
+          z3::ite(kind == L8(kCmdJog) && jog_bad_dir, L8(eBadCommand),
+          z3::ite(kind == L8(kCmdJog) && jog_toward, L8(eTowardEndstop),
+          z3::ite(is_move && not_homed, L8(eNotHomed),
+          z3::ite(is_move && out_of, L8(eOutOfLimits),
+          z3::ite(is_move && move_toward, L8(eTowardEndstop), L8(eNone)))))))));
     s = r;
   }
-  s.mode = z3::ite(in.link_alive == 0 && s.mode == b8(c, kJog), b8(c, kIdle), s.mode);
+  s.mode = z3::ite(in.link_alive == 0 && s.mode == L8(kJog), L8(kIdle), s.mode);
   s.latch_min = z3::ite(in.endstop_min != 0, one8, s.latch_min);
   s.latch_max = z3::ite(in.endstop_max != 0, one8, s.latch_max);
 
   // goal_of
   const z3::expr level_speed = z3::ite(s.level != 0, k.v_fast, k.v_slow);
-  const z3::expr kScale = b64(c, ax::kSpeedScale);
-  checks.push_back({"goal.pr_fine", ok, Arith(c, Sem::Bv, nullptr, T).fits32(w(level_speed) * kScale)});
-  checks.push_back({"goal.home_pr_fine", ok, Arith(c, Sem::Bv, nullptr, T).fits32(w(k.v_slow) * kScale)});
-  const z3::expr is_jog = s.mode == b8(c, kJog);
-  const z3::expr is_pos = s.mode == b8(c, kPosition);
-  const z3::expr is_home = s.mode == b8(c, kHome);
+  const z3::expr kScale = L64(ax::kSpeedScale);
+  rec("goal.pr_fine", ok, [&] { return Arith(c, Sem::Bv, nullptr, T).fits32(W(level_speed) * kScale); });
+  rec("goal.home_pr_fine", ok, [&] { return Arith(c, Sem::Bv, nullptr, T).fits32(W(k.v_slow) * kScale); });
+  const z3::expr is_jog = s.mode == L8(kJog);
+  const z3::expr is_pos = s.mode == L8(kPosition);
+  const z3::expr is_home = s.mode == L8(kHome);
   const z3::expr pd = z3::ite(s.target > s.pos, one8, z3::ite(s.target < s.pos, m18, zero8));
   const z3::expr g_dir =
       z3::ite(is_jog, z3::ite(motion_allowed(s, s.jog_dir), s.jog_dir, zero8),
@@ -279,17 +338,17 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
       z3::ite(is_home, z3::ite(s.pos > s.target && motion_allowed(s, m18), m18, zero8), zero8)));
   // level_speed * kSpeedScale written as ite(level, v_fast * 1000, v_slow * 1000) (the same value):
   // the proofs relate the three config products once (axis.config.fine_speeds).
-  const z3::expr vs_fine = k.v_slow * b32(c, ax::kSpeedScale);
-  const z3::expr vf_fine = k.v_fast * b32(c, ax::kSpeedScale);
+  const z3::expr vs_fine = k.v_slow * L32(ax::kSpeedScale);
+  const z3::expr vf_fine = k.v_fast * L32(ax::kSpeedScale);
   const z3::expr g_pr = z3::ite(is_home, vs_fine, z3::ite(s.level != 0, vf_fine, vs_fine));
-  const z3::expr g_bound = z3::ite(is_jog, hard_bound(s, s.jog_dir), z3::ite(is_pos || is_home, s.target, b32(c, 0)));
+  const z3::expr g_bound = z3::ite(is_jog, hard_bound(s, s.jog_dir), z3::ite(is_pos || is_home, s.target, L32(0)));
   // Position and Home: the bound may be overrun above the start speed (axis.cpp goal_of, 861dc0a).
   const z3::expr g_pass_ok = is_pos || is_home;
 
-  const z3::expr s_fine = k.v_start * b32(c, ax::kSpeedScale);
-  checks.push_back({"s_fine", ok, Arith(c, Sem::Bv, nullptr, T).fits32(w(k.v_start) * kScale)});
+  const z3::expr s_fine = k.v_start * L32(ax::kSpeedScale);
+  rec("s_fine", ok, [&] { return Arith(c, Sem::Bv, nullptr, T).fits32(W(k.v_start) * kScale); });
   const z3::expr a = k.accel;
-  const z3::expr moving = s.phase != b8(c, kStop);
+  const z3::expr moving = s.phase != L8(kStop);
 
   // classify
   const z3::expr c_estop = estop;
@@ -298,88 +357,88 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
   const z3::expr c_endmax = !estop && moving && !c_endmin && s.dir > 0 && endstop_active(s, one8);
   const z3::expr run = ok && !estop && moving && !c_endmin && !c_endmax;
   const z3::expr v = s.v;
-  checks.push_back({"v-a", run, Arith(c, Sem::Bv, nullptr, T).fits32(w(v) - w(a))});
+  rec("v-a", run, [&] { return Arith(c, Sem::Bv, nullptr, T).fits32(W(v) - W(a)); });
   const z3::expr v_brake = z3::ite(v - a > s_fine, v - a, z3::ite(v > s_fine, s_fine, v));
   const z3::expr reverse = g_dir != s.dir;
   const z3::expr rev_halt = reverse && v <= s_fine;
   // same direction: fine_distance(s, bound) = ((bound - pos) * dir) * kDist - frac, int64
   const z3::expr fw = run && !reverse;
-  Arith A64(c, Sem::Bv, &checks, fw);
-  const z3::expr d_steps = mul_dir(A64, A64.sub(w(g_bound), w(s.pos), "room.bound-pos"), s.dir, "room.*dir");
-  const z3::expr room = A64.sub(A64.mul(d_steps, b64(c, kDist), "room.*kDist"), w(s.frac), "room.-frac");
+  Arith A64(c, sem, arith_checks(), fw);
+  const z3::expr d_steps = mul_dir(A64, A64.sub(W(g_bound), W(s.pos), "room.bound-pos"), s.dir, "room.*dir");
+  const z3::expr room = A64.sub(A64.mul(d_steps, L64(kDist), "room.*kDist"), W(s.frac), "room.-frac");
   const z3::expr pr = g_pr;
-  checks.push_back({"v+a", fw && v < pr, Arith(c, Sem::Bv, nullptr, T).fits32(w(v) + w(a))});
+  rec("v+a", fw && v < pr, [&] { return Arith(c, Sem::Bv, nullptr, T).fits32(W(v) + W(a)); });
   const z3::expr hi = z3::ite(v < pr, z3::ite(v + a < pr, v + a, pr), z3::ite(v - a > pr, v - a, pr));
   const z3::expr lo = z3::ite(v_brake < hi, v_brake, hi);
-  const z3::expr dd_hi = dd(w(hi), w(s_fine), w(a), fw && !(hi <= s_fine));
-  checks.push_back({"can_stop.v+dd", fw && !(hi <= s_fine),
-                    z3::bvadd_no_overflow(w(hi), dd_hi, true) && z3::bvadd_no_underflow(w(hi), dd_hi)});
-  const z3::expr can_hi = hi <= s_fine || w(hi) + dd_hi < room;
+  const z3::expr dd_hi = dd(W(hi), W(s_fine), W(a), fw && !(hi <= s_fine));
+  rec("can_stop.v+dd", fw && !(hi <= s_fine), [&] { return
+                    z3::bvadd_no_overflow(W(hi), dd_hi, true) && z3::bvadd_no_underflow(W(hi), dd_hi); });
+  const z3::expr can_hi = hi <= s_fine || W(hi) + dd_hi < room;
   z3::expr bf(c);
   if (kernels == Kernels::Exact) {
-    bf = lo32(best_fit(Arith(c, Sem::Bv, &checks, fw && !can_hi), w(lo), w(hi), room, w(s_fine), w(a)));
+    bf = lo32(best_fit(Arith(c, sem, arith_checks(), fw && !can_hi), W(lo), W(hi), room, W(s_fine), W(a)));
   } else {
-    bf = c.bv_const(("best_fit!" + std::to_string(fresh++)).c_str(), 32);
+    bf = var("best_fit!" + std::to_string(fresh++), 32);
     // Contract proved as axis.best_fit.contract (preconditions as stated there).
-    const z3::expr pre = w(lo) >= b64(c, 1) && lo <= hi && w(hi) <= b64(c, ax::kFineSpeedMax) &&
-                         room >= b64(c, 1) && room <= b64(c, 3'000'000'000'000'000LL) &&
-                         w(s_fine) >= b64(c, 1000) && w(s_fine) <= b64(c, ax::kFineSpeedMax) && a >= 1 &&
-                         a <= b32(c, ax::kAccelMax);
-    const z3::expr dd_bf = dd(w(bf), w(s_fine), w(a), c.bool_val(false));
-    const z3::expr dd_lo = dd(w(lo), w(s_fine), w(a), c.bool_val(false));
-    const z3::expr can_lo = lo <= s_fine || w(lo) + dd_lo < room;
+    const z3::expr pre = W(lo) >= L64(1) && lo <= hi && W(hi) <= L64(ax::kFineSpeedMax) &&
+                         room >= L64(1) && room <= L64(3'000'000'000'000'000LL) &&
+                         W(s_fine) >= L64(1000) && W(s_fine) <= L64(ax::kFineSpeedMax) && a >= 1 &&
+                         a <= L32(ax::kAccelMax);
+    const z3::expr dd_bf = dd(W(bf), W(s_fine), W(a), c.bool_val(false));
+    const z3::expr dd_lo = dd(W(lo), W(s_fine), W(a), c.bool_val(false));
+    const z3::expr can_lo = lo <= s_fine || W(lo) + dd_lo < room;
     contracts.push_back(z3::implies(pre || (fw && !can_hi), lo <= bf && bf <= hi &&
-                                             z3::implies(can_lo, bf <= s_fine || w(bf) + dd_bf < room)));
-    checks.push_back({"best_fit.pre", fw && !can_hi, pre});
+                                             z3::implies(can_lo, bf <= s_fine || W(bf) + dd_bf < room)));
+    rec("best_fit.pre", fw && !can_hi, [&] { return pre; });
   }
-  const z3::expr v_next0 = z3::ite(reverse, z3::ite(rev_halt, b32(c, 0), v_brake), z3::ite(can_hi, hi, bf));
+  const z3::expr v_next0 = z3::ite(reverse, z3::ite(rev_halt, L32(0), v_brake), z3::ite(can_hi, hi, bf));
   const z3::expr not_halt = run && !rev_halt;
-  Arith A2(c, Sem::Bv, &checks, not_halt);
-  const z3::expr raw = div_dist(A2, A2.add(w(s.frac), w(v_next0), "raw.frac+v"), false, "raw./kDist");
+  Arith A2(c, sem, arith_checks(), not_halt);
+  const z3::expr raw = div_dist(A2, A2.add(W(s.frac), W(v_next0), "raw.frac+v"), false, "raw./kDist");
   // d_hard: the hard bound only (the homing bound is a goal bound with pass_ok, not a hard one).
-  const z3::expr d_hard = mul_dir(A2, A2.sub(w(hard_bound(s, s.dir)), w(s.pos), "d_hard.-pos"), s.dir, "d_hard.*dir");
+  const z3::expr d_hard = mul_dir(A2, A2.sub(W(hard_bound(s, s.dir)), W(s.pos), "d_hard.-pos"), s.dir, "d_hard.*dir");
   const z3::expr same = g_dir == s.dir;
-  Arith A5(c, Sem::Bv, &checks, not_halt && same);
-  const z3::expr d_goal = z3::ite(same, mul_dir(A5, A5.sub(w(g_bound), w(s.pos), "d_goal.-pos"), s.dir, "d_goal.*dir"),
-                                  b64(c, std::numeric_limits<std::int64_t>::max()));
+  Arith A5(c, sem, arith_checks(), not_halt && same);
+  const z3::expr d_goal = z3::ite(same, mul_dir(A5, A5.sub(W(g_bound), W(s.pos), "d_goal.-pos"), s.dir, "d_goal.*dir"),
+                                  L64(std::numeric_limits<std::int64_t>::max()));
   const z3::expr hit_t = not_halt && same && raw >= d_goal && (v_next0 <= s_fine || !g_pass_ok);
   const z3::expr hit_b = not_halt && !hit_t && raw >= d_hard;
-  const z3::expr steps = z3::ite(hit_t, d_goal, z3::ite(hit_b, z3::ite(d_hard > 0, d_hard, b64(c, 0)), z3::ite(not_halt, raw, b64(c, 0))));
-  const z3::expr v_next = z3::ite(run, v_next0, b32(c, 0));
+  const z3::expr steps = z3::ite(hit_t, d_goal, z3::ite(hit_b, z3::ite(d_hard > 0, d_hard, L64(0)), z3::ite(not_halt, raw, L64(0))));
+  const z3::expr v_next = z3::ite(run, v_next0, L32(0));
   const z3::expr cls =
-      z3::ite(c_estop, b8(c, cEStop),
-      z3::ite(c_start, z3::ite(g_dir != 0, b8(c, cFaster), b8(c, cHalt)),
-      z3::ite(c_endmin, b8(c, cEndMin),
-      z3::ite(c_endmax, b8(c, cEndMax),
-      z3::ite(rev_halt || hit_t || hit_b, b8(c, cHalt),
-      z3::ite(v_next > v, b8(c, cFaster), z3::ite(v_next == v, b8(c, cSame), b8(c, cSlower))))))));
+      z3::ite(c_estop, L8(cEStop),
+      z3::ite(c_start, z3::ite(g_dir != 0, L8(cFaster), L8(cHalt)),
+      z3::ite(c_endmin, L8(cEndMin),
+      z3::ite(c_endmax, L8(cEndMax),
+      z3::ite(rev_halt || hit_t || hit_b, L8(cHalt),
+      z3::ite(v_next > v, L8(cFaster), z3::ite(v_next == v, L8(cSame), L8(cSlower))))))));
 
   // transition: kTable (edge_for)
   const z3::expr ph = s.phase;
   auto pick = [&](const std::array<int, 7>& row) {
-    z3::expr r = b8(c, gX);
-    for (int i = 6; i >= 0; --i) r = z3::ite(cls == b8(c, i), b8(c, row[static_cast<std::size_t>(i)]), r);
+    z3::expr r = L8(gX);
+    for (int i = 6; i >= 0; --i) r = z3::ite(cls == L8(i), L8(row[static_cast<std::size_t>(i)]), r);
     return r;
   };
   (void)pick;
   const z3::expr e = sym_edge_for(c, ph, cls);
-  auto is = [&](int x) { return e == b8(c, x); };
+  auto is = [&](int x) { return e == L8(x); };
 
   SymState n = s;
   z3::expr o_err = err;
-  z3::expr step_speed = b32(c, 0);
+  z3::expr step_speed = L32(0);
   // A
   n.dir = z3::ite(is(gA), g_dir, n.dir);
   n.v = z3::ite(is(gA), s_fine, n.v);
-  n.frac = z3::ite(is(gA), b32(c, 0), n.frac);
+  n.frac = z3::ite(is(gA), L32(0), n.frac);
   // I
-  const z3::expr i_pos = is(gI) && s.mode == b8(c, kPosition);
-  const z3::expr i_home = is(gI) && !i_pos && s.mode == b8(c, kHome) && !estop;
-  n.mode = z3::ite(i_pos || i_home, b8(c, kIdle), n.mode);
-  o_err = z3::ite(i_home, b8(c, eHomeFailed), o_err);
+  const z3::expr i_pos = is(gI) && s.mode == L8(kPosition);
+  const z3::expr i_home = is(gI) && !i_pos && s.mode == L8(kHome) && !estop;
+  n.mode = z3::ite(i_pos || i_home, L8(kIdle), n.mode);
+  o_err = z3::ite(i_home, L8(eHomeFailed), o_err);
   // G, H
   const z3::expr gh = is(gG) || is(gH);
-  const z3::expr g_home = is(gG) && s.mode == b8(c, kHome);
+  const z3::expr g_home = is(gG) && s.mode == L8(kHome);
   n.pos = z3::ite(g_home, k.home_position, n.pos);
   n.homed = z3::ite(g_home, one8, n.homed);
   // X
@@ -387,28 +446,28 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
   // E
   const z3::expr ee = is(gE);
   const z3::expr e_done = ee && (hit_t || hit_b);
-  const z3::expr e_home = e_done && s.mode == b8(c, kHome);
-  n.mode = z3::ite(gh || x || (e_done && (s.mode == b8(c, kPosition) || s.mode == b8(c, kHome))), b8(c, kIdle), n.mode);
-  o_err = z3::ite(e_home, b8(c, eHomeFailed), o_err);
+  const z3::expr e_home = e_done && s.mode == L8(kHome);
+  n.mode = z3::ite(gh || x || (e_done && (s.mode == L8(kPosition) || s.mode == L8(kHome))), L8(kIdle), n.mode);
+  o_err = z3::ite(e_home, L8(eHomeFailed), o_err);
   const z3::expr stopping = gh || x || ee;
   // default (B C D F J K L M N)
   const z3::expr dflt = !(is(gA) || is(gI) || gh || x || ee);
-  Arith A3(c, Sem::Bv, &checks, ok && dflt);
+  Arith A3(c, sem, arith_checks(), ok && dflt);
   // v_next == v_next0 on every default edge (they are only reached on the `run` path).
-  const z3::expr frac_sum = A3.add(w(s.frac), w(v_next0), "raw.frac+v");
-  n.v = z3::ite(stopping, b32(c, 0), z3::ite(dflt, v_next, n.v));
-  n.frac = z3::ite(stopping, b32(c, 0), z3::ite(dflt, lo32(div_dist(A3, frac_sum, true, "frac.%kDist")), n.frac));
-  step_speed = z3::ite(ee, z3::ite(steps > 0, v_next, b32(c, 0)), z3::ite(dflt, v_next, b32(c, 0)));
+  const z3::expr frac_sum = A3.add(W(s.frac), W(v_next0), "raw.frac+v");
+  n.v = z3::ite(stopping, L32(0), z3::ite(dflt, v_next, n.v));
+  n.frac = z3::ite(stopping, L32(0), z3::ite(dflt, lo32(div_dist(A3, frac_sum, true, "frac.%kDist")), n.frac));
+  step_speed = z3::ite(ee, z3::ite(steps > 0, v_next, L32(0)), z3::ite(dflt, v_next, L32(0)));
   // edge_target
-  n.phase = z3::ite(is(gA) || is(gJ) || is(gM) || is(gF), b8(c, kAccel),
-            z3::ite(is(gB) || is(gL) || is(gN), b8(c, kConst),
-            z3::ite(is(gC) || is(gD) || is(gK), b8(c, kDecel),
-            z3::ite(is(gE) || is(gG) || is(gH) || is(gX), b8(c, kStop), s.phase))));
+  n.phase = z3::ite(is(gA) || is(gJ) || is(gM) || is(gF), L8(kAccel),
+            z3::ite(is(gB) || is(gL) || is(gN), L8(kConst),
+            z3::ite(is(gC) || is(gD) || is(gK), L8(kDecel),
+            z3::ite(is(gE) || is(gG) || is(gH) || is(gX), L8(kStop), s.phase))));
   // pos += dir * steps, int64
-  Arith A4(c, Sem::Bv, &checks, ok);
-  const z3::expr npos = A4.add(w(n.pos), mul_dir(A4, steps, n.dir, "pos.dir*steps"), "pos.+");
-  checks.push_back({"pos.cast", ok, Arith(c, Sem::Bv, nullptr, T).fits32(npos)});
-  checks.push_back({"steps.cast", ok, Arith(c, Sem::Bv, nullptr, T).fits32(steps)});
+  Arith A4(c, sem, arith_checks(), ok);
+  const z3::expr npos = A4.add(W(n.pos), mul_dir(A4, steps, n.dir, "pos.dir*steps"), "pos.+");
+  rec("pos.cast", ok, [&] { return Arith(c, Sem::Bv, nullptr, T).fits32(npos); });
+  rec("steps.cast", ok, [&] { return Arith(c, Sem::Bv, nullptr, T).fits32(steps); });
   n.pos = lo32(npos);
   n.latch_min = z3::ite(steps > 0 && n.dir > 0 && in.endstop_min == 0, zero8, n.latch_min);
   n.latch_max = z3::ite(steps > 0 && n.dir < 0 && in.endstop_max == 0, zero8, n.latch_max);
@@ -435,6 +494,7 @@ z3::expr Encoder::all_contracts() const {
 namespace {
 std::int64_t num(const z3::model& m, const z3::expr& e) {
   const z3::expr v = m.eval(e, true);
+  if (v.is_int()) return v.get_numeral_int64();
   const unsigned n = e.get_sort().bv_size();
   std::uint64_t u = v.get_numeral_uint64();
   if (n < 64 && (u >> (n - 1)) != 0) u |= ~((std::uint64_t{1} << n) - 1);  // sign-extend
@@ -497,8 +557,8 @@ ax::Output eval_output(const z3::model& m, const SymOutput& o) {
   return r;
 }
 
-ax::StepResult eval_step(z3::context& ctx, const ax::State& s, const ax::Input& in, const ax::Config& c) {
-  Encoder enc(ctx, Kernels::Exact);
+ax::StepResult eval_step(z3::context& ctx, const ax::State& s, const ax::Input& in, const ax::Config& c, Sem sem) {
+  Encoder enc(ctx, Kernels::Exact, sem);
   const auto r = enc.step(enc.state(s), enc.input(in), enc.config(c));
   // Every term is ground: simplify() folds it to a numeral.
   auto g = [](const z3::expr& e) { return ground_value(e); };
@@ -538,11 +598,16 @@ z3::expr sym_link_alive(z3::context& c, const z3::expr& silent) {
   return z3::ult(silent, c.bv_val(ax::kLinkTimeoutTicks, 16));
 }
 
+// An 8-bit enum code, or an integer when the operand is one (Sem::Int encoding).
+namespace {
+z3::expr code(z3::context& c, const z3::expr& like, int v) { return like.is_int() ? c.int_val(v) : c.bv_val(v, 8); }
+}  // namespace
+
 z3::expr sym_edge_guard(z3::context& c, int e, const z3::expr& p, const z3::expr& k) {
-  const z3::expr stop = p == c.bv_val(kStop, 8);
-  const z3::expr moving = p == c.bv_val(kAccel, 8) || p == c.bv_val(kConst, 8) || p == c.bv_val(kDecel, 8);
-  auto P = [&](int x) { return p == c.bv_val(x, 8); };
-  auto K = [&](int x) { return k == c.bv_val(x, 8); };
+  auto P = [&](int x) { return p == code(c, p, x); };
+  auto K = [&](int x) { return k == code(c, k, x); };
+  const z3::expr stop = P(kStop);
+  const z3::expr moving = P(kAccel) || P(kConst) || P(kDecel);
   switch (e) {
     case gA: return stop && K(cFaster);
     case gI: return stop && !K(cFaster);
@@ -565,14 +630,14 @@ z3::expr sym_edge_guard(z3::context& c, int e, const z3::expr& p, const z3::expr
 
 z3::expr sym_edge_for(z3::context& c, const z3::expr& ph, const z3::expr& cls) {
   auto pick = [&](const std::array<int, 7>& row) {
-    z3::expr r = c.bv_val(gX, 8);
-    for (int i = 6; i >= 0; --i) r = z3::ite(cls == c.bv_val(i, 8), c.bv_val(row[static_cast<std::size_t>(i)], 8), r);
+    z3::expr r = code(c, cls, gX);
+    for (int i = 6; i >= 0; --i) r = z3::ite(cls == code(c, cls, i), code(c, cls, row[static_cast<std::size_t>(i)]), r);
     return r;
   };
-  return z3::ite(ph == c.bv_val(kStop, 8), pick({gI, gI, gI, gI, gA, gI, gI}),
-         z3::ite(ph == c.bv_val(kAccel, 8), pick({gX, gG, gH, gE, gJ, gB, gD}),
-         z3::ite(ph == c.bv_val(kConst, 8), pick({gX, gG, gH, gE, gM, gL, gC}),
-         z3::ite(ph == c.bv_val(kDecel, 8), pick({gX, gG, gH, gE, gF, gN, gK}), c.bv_val(gX, 8)))));
+  return z3::ite(ph == code(c, ph, kStop), pick({gI, gI, gI, gI, gA, gI, gI}),
+         z3::ite(ph == code(c, ph, kAccel), pick({gX, gG, gH, gE, gJ, gB, gD}),
+         z3::ite(ph == code(c, ph, kConst), pick({gX, gG, gH, gE, gM, gL, gC}),
+         z3::ite(ph == code(c, ph, kDecel), pick({gX, gG, gH, gE, gF, gN, gK}), code(c, cls, gX)))));
 }
 
 std::int64_t ground_value(const z3::expr& e) {

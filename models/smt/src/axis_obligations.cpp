@@ -25,6 +25,7 @@ namespace ap::smt {
 namespace ax = ap::axis;
 using axis::Encoder;
 using axis::Kernels;
+using axis::Sem;
 using axis::SymConfig;
 using axis::SymInput;
 using axis::SymOutput;
@@ -116,8 +117,23 @@ Outcome decide(z3::context& c, const z3::expr& hyps, const z3::expr& goal, unsig
   s.add(hyps);
   s.add(!goal);
   const z3::check_result r = s.check();
-  out.seconds = since(t0);
+  // A proof from unsatisfiable hypotheses says nothing (e.g. an invariant no state meets, or
+  // contracts that contradict the encoding): the hypotheses alone must have a model.
+  z3::check_result vac = z3::sat;
   if (r == z3::unsat) {
+    z3::solver h = logic != nullptr ? z3::solver(c, logic) : z3::solver(c);
+    if (timeout_ms > 0) h.set("timeout", timeout_ms);
+    h.add(hyps);
+    vac = h.check();
+  }
+  out.seconds = since(t0);
+  if (r == z3::unsat && vac == z3::unsat) {
+    out.verdict = Verdict::Failed;
+    out.counterexample = "vacuous: the hypotheses have no model, so the proof would say nothing";
+  } else if (r == z3::unsat && vac == z3::unknown) {
+    out.verdict = Verdict::Unknown;
+    out.counterexample = "proved, but the hypotheses' satisfiability is unknown: " + s.reason_unknown();
+  } else if (r == z3::unsat) {
     out.verdict = Verdict::Proved;
   } else if (r == z3::sat) {
     out.verdict = Verdict::Failed;
@@ -138,14 +154,18 @@ struct StepProblem {
   SymState s0;
   SymInput in;
   Encoder::Result r;
-  StepProblem(z3::context& ctx, Kernels k)
-      : c(ctx), enc(ctx, k), cfg(enc.config("")), s0(enc.state("_0")), in(enc.input("_0")),
+  StepProblem(z3::context& ctx, Kernels k, Sem sem = Sem::Bv)
+      : c(ctx), enc(ctx, k, sem), cfg(enc.config(sem == Sem::Int ? "_i" : "")),
+        s0(enc.state(sem == Sem::Int ? "_0i" : "_0")), in(enc.input(sem == Sem::Int ? "_0i" : "_0")),
         r(enc.step(s0, in, cfg)) {}
 
   // The code's own term: the int32 product v_start * kSpeedScale, widened (same hash-consed
   // term as in the encoding, so the solver need not relate a 32- and a 64-bit product).
-  z3::expr s_fine() const { return w(cfg.v_start * c.bv_val(ax::kSpeedScale, 32)); }
-  z3::expr valid() { return enc.config_valid(cfg) && enc.state_valid(s0); }
+  z3::expr s_fine() const { return enc.W(cfg.v_start * enc.L32(ax::kSpeedScale)); }
+  // Valid config and state; in Int also every field (state, input, config) within its C++ type.
+  z3::expr valid() {
+    return enc.domain(cfg) && enc.domain(s0) && enc.domain(in) && enc.config_valid(cfg) && enc.state_valid(s0);
+  }
 
   // Trace + replay case from a model: tick 0 from the model, then `run` more ticks of step().
   std::string render(const std::string& name, const z3::model& m, int run) const {
@@ -175,11 +195,11 @@ void add(ObligationList& out, const std::string& name, const std::string& method
 z3::expr is_mode(z3::context& c, const z3::expr& m, ax::Mode x) { return m == b8(c, static_cast<int>(x)); }
 z3::expr is_phase(z3::context& c, const z3::expr& p, ax::Phase x) { return p == b8(c, static_cast<int>(x)); }
 z3::expr is_kind(z3::context& c, const z3::expr& k, ax::CmdKind x) { return k == b8(c, static_cast<int>(x)); }
+// The same over the encoder's semantics (Int twin).
+z3::expr is_mode(const Encoder& e, const z3::expr& m, ax::Mode x) { return m == e.L8(static_cast<int>(x)); }
+z3::expr is_phase(const Encoder& e, const z3::expr& p, ax::Phase x) { return p == e.L8(static_cast<int>(x)); }
+z3::expr is_kind(const Encoder& e, const z3::expr& k, ax::CmdKind x) { return k == e.L8(static_cast<int>(x)); }
 
-// ((t - pos) * dir) * kDist - frac: the fine distance to t in the direction of motion.
-z3::expr room_to(z3::context& c, const SymState& s, const z3::expr& t64) {
-  return (t64 - w(s.pos)) * w(s.dir) * b64(c, kDist) - w(s.frac);
-}
 
 // ---- NIA lemma problems over the kernels ------------------------------------------------
 
@@ -435,36 +455,36 @@ void add_axis_obligations(ObligationList& out) {
                       });
       });
   add(out, "axis.speed.max",
-      "QF_BV inductive invariant (1-induction), fixed config: v <= v_fast*1000 -> v' <= v_fast*1000 and "
-      "step_speed <= v_fast*1000; base: v = 0 at rest",
+      "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction), fixed config: "
+      "v <= v_fast*1000 -> v' <= v_fast*1000 and step_speed <= v_fast*1000; base: v = 0 at rest",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract);
-        const z3::expr vmax = w(p.cfg.v_fast * p.c.bv_val(ax::kSpeedScale, 32));  // the code's int32 product
-        return decide(p.c, p.valid() && w(p.s0.v) <= vmax && p.enc.all_contracts(),
-                      w(p.r.state.v) <= vmax && w(p.r.out.step_speed) <= vmax, t, "QF_BV",
+        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
+        const z3::expr vmax = p.cfg.v_fast * p.enc.L32(ax::kSpeedScale);  // the code's product
+        return decide(p.c, p.valid() && p.s0.v <= vmax && p.enc.all_contracts(),
+                      p.r.state.v <= vmax && p.r.out.step_speed <= vmax, t, nullptr,
                       [&](const z3::model& m) { return p.render("axis.speed.max", m, 2000); });
       });
   add(out, "axis.soft_limits",
-      "QF_BV inductive invariant (1-induction), fixed config, I: (mode=Home -> homed=0) & (mode=Position & "
+      "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction), fixed config, I: (mode=Home -> homed=0) & (mode=Position & "
       "homed -> soft_min <= target <= soft_max): while homed, no tick moves pos past "
       "soft_min/soft_max (pos' within [min(pos,soft_min), max(pos,soft_max)]); re-referencing by a Home command "
       "excluded",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract);
+        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
         z3::context& c = p.c;
         auto inv = [&](const SymState& s) {
-          return z3::implies(is_mode(c, s.mode, ax::Mode::Home), s.homed == 0) &&
-                 z3::implies(is_mode(c, s.mode, ax::Mode::Position) && s.homed == 1,
+          return z3::implies(is_mode(p.enc, s.mode, ax::Mode::Home), s.homed == 0) &&
+                 z3::implies(is_mode(p.enc, s.mode, ax::Mode::Position) && s.homed == 1,
                              s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
         };
         const z3::expr hyp = p.valid() && inv(p.s0) && p.enc.all_contracts() && p.s0.homed == 1 &&
-                             !is_kind(c, p.in.kind, ax::CmdKind::Home);
+                             !is_kind(p.enc, p.in.kind, ax::CmdKind::Home);
         const SymState& n = p.r.state;
         const z3::expr hi = z3::ite(p.s0.pos > p.cfg.soft_max, p.s0.pos, p.cfg.soft_max);
         const z3::expr lo = z3::ite(p.s0.pos < p.cfg.soft_min, p.s0.pos, p.cfg.soft_min);
         const z3::expr goal = inv(n) && z3::implies(n.homed == 1, n.pos <= hi && n.pos >= lo);
-        const z3::expr base = z3::implies(p.s0.homed == 0 || !is_mode(c, p.s0.mode, ax::Mode::Home), inv(p.s0));
-        return decide(c, hyp, goal && base, t, "QF_BV", [&](const z3::model& m) { return p.render("axis.soft_limits", m, 2000); });
+        const z3::expr base = z3::implies(p.s0.homed == 0 || !is_mode(p.enc, p.s0.mode, ax::Mode::Home), inv(p.s0));
+        return decide(c, hyp, goal && base, t, nullptr, [&](const z3::model& m) { return p.render("axis.soft_limits", m, 2000); });
       });
   add(out, "axis.dir.reverse_at_start_speed",
       "QF_BV, every valid state and input: DIR changes only when v <= s_fine (at rest: edge A), and never in a "
@@ -488,45 +508,51 @@ void add_axis_obligations(ObligationList& out) {
                       [&](const z3::model& m) { return p.render("axis.endstop.no_step_toward", m, 0); });
       });
   add(out, "axis.position.no_overshoot",
-      "QF_BV inductive invariant (1-induction) I: Position & moving -> dir*(target-pos) >= 1 & "
-      "(v > s_fine -> DD(v) < room); fixed config; inputs: no command, or a move from rest, or a retarget "
-      "at least the stopping distance ahead in the direction of motion; blocked = 0. Claim: pos never "
-      "crosses the target; arrival step_speed <= s_fine",
+      "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction) I: Position & moving -> "
+      "dir*(target-pos) >= 1 & (v > s_fine -> DD(v) < room); fixed config; inputs: no command, or a move from "
+      "rest, or a retarget at least the stopping distance ahead in the direction of motion; blocked = 0. Claim: "
+      "pos never crosses the target; arrival step_speed <= s_fine",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract);
+        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
         z3::context& c = p.c;
         Encoder& enc = p.enc;
         const z3::expr sf = p.s_fine();
-        const z3::expr a64 = w(p.cfg.accel);
+        const z3::expr a = p.cfg.accel;
+        // ((t - pos) * dir) * kDist - frac with dir in {-1, 1} (state_valid): linear.
+        auto room_to = [&](const SymState& s, const z3::expr& goal_pos) {
+          return z3::ite(s.dir == 1, goal_pos - s.pos, s.pos - goal_pos) * c.int_val(kDist) - s.frac;
+        };
         auto inv = [&](const SymState& s) {
-          const z3::expr pos_mode = is_mode(c, s.mode, ax::Mode::Position);
-          const z3::expr moving = !is_phase(c, s.phase, ax::Phase::Stop);
+          const z3::expr pos_mode = is_mode(enc, s.mode, ax::Mode::Position);
+          const z3::expr moving = !is_phase(enc, s.phase, ax::Phase::Stop);
           const z3::expr in_lim = s.homed == 0 || (s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
-          const z3::expr ahead = (w(s.target) - w(s.pos)) * w(s.dir) >= b64(c, 1);
-          const z3::expr dd = enc.dd(w(s.v), sf, a64, c.bool_val(false));
+          const z3::expr ahead = z3::ite(s.dir == 1, s.target - s.pos, s.pos - s.target) >= 1;
+          const z3::expr dd = enc.dd(s.v, sf, a, c.bool_val(false));
           return z3::implies(pos_mode, in_lim) &&
-                 z3::implies(pos_mode && moving, ahead && z3::implies(w(s.v) > sf, dd < room_to(c, s, w(s.target))));
+                 z3::implies(pos_mode && moving, ahead && z3::implies(s.v > sf, dd < room_to(s, s.target)));
         };
         const SymState& s = p.s0;
         const SymInput& in = p.in;
-        const z3::expr t64 = z3::ite(is_kind(c, in.kind, ax::CmdKind::MoveAbs), w(in.value), w(s.pos) + w(in.value));
-        const z3::expr d_new = z3::ite(t64 > w(s.pos), b8(c, 1), z3::ite(t64 < w(s.pos), b8(c, -1), b8(c, 0)));
-        const z3::expr dd_now = enc.dd(w(s.v), sf, a64, c.bool_val(false));
-        const z3::expr reachable = is_phase(c, s.phase, ax::Phase::Stop) ||
-                                   (d_new == s.dir && (w(s.v) <= sf || dd_now < room_to(c, s, t64)));
-        const z3::expr move = is_kind(c, in.kind, ax::CmdKind::MoveAbs) || is_kind(c, in.kind, ax::CmdKind::MoveRel);
-        const z3::expr inputs = in.blocked == 0 && (is_kind(c, in.kind, ax::CmdKind::None) || (move && reachable));
+        const z3::expr t64 = z3::ite(is_kind(enc, in.kind, ax::CmdKind::MoveAbs), in.value, s.pos + in.value);
+        const z3::expr d_new = z3::ite(t64 > s.pos, c.int_val(1), z3::ite(t64 < s.pos, c.int_val(-1), c.int_val(0)));
+        const z3::expr dd_now = enc.dd(s.v, sf, a, c.bool_val(false));
+        const z3::expr reachable = is_phase(enc, s.phase, ax::Phase::Stop) ||
+                                   (d_new == s.dir && (s.v <= sf || dd_now < room_to(s, t64)));
+        const z3::expr move = is_kind(enc, in.kind, ax::CmdKind::MoveAbs) || is_kind(enc, in.kind, ax::CmdKind::MoveRel);
+        const z3::expr inputs = in.blocked == 0 && (is_kind(enc, in.kind, ax::CmdKind::None) || (move && reachable));
         const SymState& n = p.r.state;
-        const z3::expr tt = w(n.target);
-        const z3::expr was_pos = is_mode(c, n.mode, ax::Mode::Position) ||
-                                 (is_mode(c, s.mode, ax::Mode::Position) && is_kind(c, in.kind, ax::CmdKind::None));
-        const z3::expr no_cross = (tt - w(n.pos)) * (tt - w(s.pos)) >= b64(c, 0);
-        const z3::expr arrive = z3::implies(n.pos == n.target && s.pos != n.target, w(p.r.out.step_speed) <= sf);
+        const z3::expr tt = n.target;
+        const z3::expr was_pos = is_mode(enc, n.mode, ax::Mode::Position) ||
+                                 (is_mode(enc, s.mode, ax::Mode::Position) && is_kind(enc, in.kind, ax::CmdKind::None));
+        // (t - pos') * (t - pos) >= 0, i.e. both on the same side (or on the target): never crosses.
+        const z3::expr x = tt - n.pos, y = tt - s.pos;
+        const z3::expr no_cross = (x >= 0 && y >= 0) || (x <= 0 && y <= 0);
+        const z3::expr arrive = z3::implies(n.pos == n.target && s.pos != n.target, p.r.out.step_speed <= sf);
         const z3::expr goal = inv(n) && z3::implies(was_pos, no_cross && arrive);
         const z3::expr hyp = p.valid() && inv(s) && inputs;
         // Base case: the initial state (initial_state(): at rest, idle) satisfies I.
-        const z3::expr base = z3::implies(is_phase(c, s.phase, ax::Phase::Stop) && is_mode(c, s.mode, ax::Mode::Idle), inv(s));
-        return decide(c, hyp && enc.all_contracts(), goal && base, t, "QF_BV",
+        const z3::expr base = z3::implies(is_phase(enc, s.phase, ax::Phase::Stop) && is_mode(enc, s.mode, ax::Mode::Idle), inv(s));
+        return decide(c, hyp && enc.all_contracts(), goal && base, t, nullptr,
                       [&](const z3::model& m) { return p.render("axis.position.no_overshoot", m, 200000); });
       });
   add(out, "axis.watchdog.timeout",
@@ -561,30 +587,32 @@ void add_axis_obligations(ObligationList& out) {
         return decide(c, hyp, goal, t, "QF_BV", [&](const z3::model& m) { return p.render("axis.watchdog.stop_begins", m, 2000); });
       });
   add(out, "axis.watchdog.stop_distance",
-      "QF_BV inductive invariant (1-induction) with ghost T (fine travel since the stop began) and "
-      "Phi(v) = v > s_fine ? DD(v) + s_fine : 0: T + Phi(v) <= Phi(v0); so the stop completes within "
-      "DD(v0) + one tick at start speed; inputs: no frame (no command), any endstop/blocked",
+      "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction) with ghost T (fine travel "
+      "since the stop began) and Phi(v) = v > s_fine ? DD(v) + s_fine : 0: T + Phi(v) <= Phi(v0); so the stop "
+      "completes within DD(v0) + one tick at start speed; inputs: no frame (no command), any endstop/blocked",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract);
+        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
         z3::context& c = p.c;
+        Encoder& enc = p.enc;
         const z3::expr sf = p.s_fine();
-        const z3::expr a64 = w(p.cfg.accel);
+        const z3::expr a = p.cfg.accel;
         auto phi = [&](const SymState& s) {
-          return z3::ite(w(s.v) > sf, p.enc.dd(w(s.v), sf, a64, c.bool_val(false)) + sf, b64(c, 0));
+          return z3::ite(s.v > sf, enc.dd(s.v, sf, a, c.bool_val(false)) + sf, c.int_val(0));
         };
-        const z3::expr T = c.bv_const("T", 64), phi0 = c.bv_const("Phi0", 64);
+        const z3::expr T = c.int_const("T"), phi0 = c.int_const("Phi0");
         auto inv = [&](const SymState& s, const z3::expr& tt) {
-          // T <= Phi0 <= 2e18 and Phi <= 1e18 + 1e9 keep the ghost sums from wrapping.
-          return is_mode(c, s.mode, ax::Mode::Idle) && tt >= b64(c, 0) && tt <= phi0 && tt + phi(s) <= phi0;
+          return is_mode(enc, s.mode, ax::Mode::Idle) && tt >= 0 && tt + phi(s) <= phi0;
         };
-        const z3::expr hyp0 = p.valid() && is_kind(c, p.in.kind, ax::CmdKind::None) && phi0 >= b64(c, 0) &&
-                              phi0 <= b64(c, 2'000'000'000'000'000'000LL) && inv(p.s0, T);
-        const z3::expr T2 = T + w(p.r.out.step_speed);
-        const z3::expr base = z3::implies(phi0 == phi(p.s0) && is_mode(c, p.s0.mode, ax::Mode::Idle), inv(p.s0, b64(c, 0)));
+        const z3::expr hyp0 = p.valid() && is_kind(enc, p.in.kind, ax::CmdKind::None) && inv(p.s0, T);
+        const z3::expr T2 = T + p.r.out.step_speed;
+        const z3::expr base = z3::implies(phi0 == phi(p.s0) && is_mode(enc, p.s0.mode, ax::Mode::Idle), inv(p.s0, c.int_val(0)));
         const z3::expr goal = inv(p.r.state, T2) && base;
-        const z3::expr hyp = hyp0 && p.enc.all_contracts();  // after every dd() call above
-        return decide(c, hyp, goal, t, "QF_BV",
-                      [&](const z3::model& m) { return "T=" + m.eval(T, true).to_string() + " Phi0=" + m.eval(phi0, true).to_string() + " Phi(s)=" + m.eval(phi(p.s0), true).to_string() + " Phi(s')=" + m.eval(phi(p.r.state), true).to_string() + " inv'=" + m.eval(inv(p.r.state, T2), true).to_string() + " base=" + m.eval(base, true).to_string() + "\n    " + p.render("axis.watchdog.stop_distance", m, 200000); });
+        const z3::expr hyp = hyp0 && enc.all_contracts();  // after every dd() call above
+        return decide(c, hyp, goal, t, nullptr, [&](const z3::model& m) {
+          return "T=" + m.eval(T, true).to_string() + " Phi0=" + m.eval(phi0, true).to_string() +
+                 " Phi(s)=" + m.eval(phi(p.s0), true).to_string() + " Phi(s')=" + m.eval(phi(p.r.state), true).to_string() +
+                 "\n    " + p.render("axis.watchdog.stop_distance", m, 200000);
+        });
       });
 }
 

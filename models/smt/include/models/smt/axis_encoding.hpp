@@ -16,6 +16,7 @@
 // constrained only by the lemmas proved about the exact kernels (axis.dd.*, axis.best_fit.*).
 // This is sound: a property proved for every value the contract allows holds for the real one.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -48,9 +49,17 @@ struct SymOutput {
 
 enum class Kernels { Exact, Contract };
 
+// Sem::Bv (default): the bit-precise encoding described above. Sem::Int: the same text over
+// mathematical integers (fields range-constrained by domain(), casts and widenings the
+// identity, no side conditions recorded). On every path where the Bv encoding's side
+// conditions hold -- all of them, for every bit pattern (axis.overflow.step) -- each
+// operation's exact result is in its C++ type, so both compute the same values; the Int
+// encoding lets linear arithmetic (not bit-blasted 64-bit adders and x1000 multipliers) carry
+// the step-level inductive proofs. Conformance compares both with step().
 struct Encoder {
   z3::context& c;
   Kernels kernels = Kernels::Exact;
+  Sem sem = Sem::Bv;
   Checks checks;                    // no-overflow side conditions of the step encoding
   std::vector<z3::expr> contracts;  // kernel lemmas instantiated at the call sites (Contract)
   int fresh = 0;
@@ -61,7 +70,22 @@ struct Encoder {
   z3::expr vstart;  // the config's v_start of the last step() (kernel preconditions)
   z3::func_decl dd_fun;  // DD(v, s, a): int32 x int32 x int32 -> int64 (Contract mode)
 
-  explicit Encoder(z3::context& ctx, Kernels k = Kernels::Exact);
+  explicit Encoder(z3::context& ctx, Kernels k = Kernels::Exact, Sem s = Sem::Bv);
+
+  // Literals, widening and casts in the encoder's semantics.
+  z3::expr lit(std::int64_t v, unsigned bits) const;
+  z3::expr L8(std::int64_t v) const { return lit(v, 8); }
+  z3::expr L32(std::int64_t v) const { return lit(v, 32); }
+  z3::expr L64(std::int64_t v) const { return lit(v, 64); }
+  z3::expr W(const z3::expr& e) const;     // int8/int32 -> int64 (sign extension)
+  z3::expr lo32(const z3::expr& e) const;  // static_cast<int32_t>(int64)
+  z3::expr ule(const z3::expr& a, int b) const;
+  z3::expr ugt(const z3::expr& a, int b) const;
+  z3::expr var(const std::string& name, unsigned bits) const;
+  // Int: every field within its C++ type (true in Bv, where the width says it).
+  z3::expr domain(const SymConfig& k) const;
+  z3::expr domain(const SymState& s) const;
+  z3::expr domain(const SymInput& in) const;
 
   SymConfig config(const std::string& suffix);
   SymState state(const std::string& suffix);
@@ -88,6 +112,9 @@ struct Encoder {
   z3::expr mul_dir(const Arith& ar, const z3::expr& x64, const z3::expr& d8, const std::string& name);
   z3::expr div_dist(const Arith& ar, const z3::expr& x64, bool rem, const std::string& name);
 
+  void rec(const std::string& name, const z3::expr& guard, const std::function<z3::expr()>& cond);
+  Checks* arith_checks();
+
   // All side conditions as one formula (each guard -> cond).
   z3::expr no_overflow() const;
   z3::expr all_contracts() const;
@@ -99,8 +126,9 @@ ax::Input eval_input(const z3::model& m, const SymInput& in);
 ax::Config eval_config(const z3::model& m, const SymConfig& c);
 ax::Output eval_output(const z3::model& m, const SymOutput& o);
 
-// Evaluate the exact encoding on concrete arguments (conformance).
-ax::StepResult eval_step(z3::context& ctx, const ax::State& s, const ax::Input& in, const ax::Config& c);
+// Evaluate the exact encoding (bit-precise, or its Int twin) on concrete arguments (conformance).
+ax::StepResult eval_step(z3::context& ctx, const ax::State& s, const ax::Input& in, const ax::Config& c,
+                         Sem sem = Sem::Bv);
 
 }  // namespace ap::smt::axis
 
