@@ -77,6 +77,7 @@ TEST(dds_scenario_errors, HeaderStatementsAreChecked) {
       {"period 5 furlongs\n", "t.scn:3: command period: '5' needs a unit: a time (us, ms, s, min)"},
       {"period 5furlongs\n", "t.scn:3: unknown unit 'furlongs'"},
       {"period 3ex\n", "t.scn:3: unknown unit 'ex'"},
+      {"period 1e-.\n", "t.scn:3: unknown unit 'e-.'"},
   };
   for (const Bad& b : cases) {
     SCOPED_TRACE(b.text);
@@ -160,6 +161,7 @@ TEST(dds_scenario_errors, ActionsAreChecked) {
       {"at 1 s rotate 3 mA\n", "t.scn:3: rotation: expected an angle (mdeg, deg), got a current (mA, A)"},
       {"at 1 s ble off\n", "t.scn:3: BLE state (Tab. 7-2) must be shutdown|standby|connected|session, got 'off'"},
       {"at 1 s tmc x I*RUN 12\n", "t.scn:3: expected a TMC2130 field name, got 'I*RUN'"},
+      {"at 1 s tmc x I~RUN 12\n", "t.scn:3: expected a TMC2130 field name, got 'I~RUN'"},
       {"at 1 s tmc x IRUN -1\n", "t.scn:3: field value must not be negative"},
       {"at 1 s tmc x IRUN 12 mA\n", "t.scn:3: field value: expected a plain number, got a current (mA, A)"},
       {"at 1 s link cut 2 mm\n", "t.scn:3: cut duration: expected a time (us, ms, s, min), got a length (um, mm, ...)"},
@@ -294,6 +296,7 @@ TEST(dds_scenario_errors, EveryVerbParsesAndRoundTrips) {
       "expect from 0 s to 1 min board.battery < 4.2 V\n"
       "expect end @1 y.blocked == off\n"
       "expect end tmc.y.TPOWER_DOWN == 10\n"
+      "expect end tmc.x.s2ga == off\n"
       "expect end x.dir != +\n"
       "expect end echo.last == ok.x\n"
       "expect end sub.battery == 3700",   // no final newline
@@ -356,13 +359,13 @@ TEST(dds_scenario_errors, EveryVerbParsesAndRoundTrips) {
   EXPECT_EQ(*s.actions[11].amount, (sc::Quantity{500.0, sc::Dim::speed}));
   EXPECT_EQ(*s.actions[12].amount, (sc::Quantity{5000.0, sc::Dim::length}));
 
-  ASSERT_EQ(s.expectations.size(), 9U);
+  ASSERT_EQ(s.expectations.size(), 10U);
   EXPECT_EQ(*s.expectations[0].tol, (sc::Quantity{5.0, sc::Dim::current}));
   EXPECT_EQ(*s.expectations[1].tol, (sc::Quantity{1000.0, sc::Dim::temperature}));
   EXPECT_EQ(s.expectations[3].t2_us, 60'000'000);
   EXPECT_EQ(s.expectations[4].target.board, 1U);
-  EXPECT_EQ(std::get<std::string>(s.expectations[7].value), "ok.x");
-  EXPECT_EQ(s.expectations[8].line, 48);
+  EXPECT_EQ(std::get<std::string>(s.expectations[8].value), "ok.x");
+  EXPECT_EQ(s.expectations[9].line, 49);
 
   for (const sc::Action& a : s.actions) EXPECT_NE(sc::to_string(a.verb), "?");
   const std::string text = sc::to_text(s);
@@ -400,6 +403,10 @@ TEST(dds_scenario_errors, UnitNames) {
   EXPECT_EQ(sc::unit_name(sc::Dim::temperature), "mdegC");
   EXPECT_EQ(sc::unit_name(sc::Dim::angle), "mdeg");
   EXPECT_EQ(sc::unit_name(sc::Dim::ratio), "%");
+  // Bytes outside the enums (hand-built values): neutral placeholders, never a table overrun.
+  EXPECT_EQ(sc::unit_name(static_cast<sc::Dim>(200)), "");
+  EXPECT_EQ(sc::to_string(sc::Verb::raw), "raw");
+  EXPECT_EQ(sc::to_string(static_cast<sc::Verb>(200)), "?");
 }
 
 TEST(dds_scenario_errors, HoldsEveryOperator) {
