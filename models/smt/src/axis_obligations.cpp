@@ -13,6 +13,7 @@
 #include <functional>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "core/axis/watchdog.hpp"
 #include "models/smt/axis_encoding.hpp"
@@ -253,6 +254,35 @@ std::string kernel_case(const std::string& name, const z3::model& m, const Kerne
   return o.str();
 }
 
+// Step-level claims written once over the encoder's semantics. They are proved on the Int
+// twin with the kernel contracts (QF_UFLIA: fast). When that fails, the same claim is asked of
+// the exact bit-precise encoding (exact kernels, QF_BV): a model there is a counterexample of
+// the code itself, so the case written for replay fails on the buggy build too; a contract
+// model alone may be spurious (a best_fit or DD value the real kernel never returns), and the
+// report says so.
+using StepClaim = std::function<std::pair<z3::expr, z3::expr>(StepProblem&)>;  // (hypotheses, goal)
+
+Outcome prove_step(const std::string& name, unsigned t, int run, const StepClaim& claim) {
+  z3::context& c = shared_context();
+  StepProblem p(c, Kernels::Contract, Sem::Int);
+  const auto [hyp, goal] = claim(p);
+  Outcome o = decide(c, p.valid() && hyp && p.enc.all_contracts(), goal, t, nullptr,
+                     [&](const z3::model& m) { return p.render(name, m, run); });
+  if (o.verdict != Verdict::Failed || o.counterexample.rfind("vacuous", 0) == 0) return o;
+  StepProblem q(c, Kernels::Exact, Sem::Bv);
+  const auto [hyp_q, goal_q] = claim(q);
+  const Outcome e = decide(c, q.valid() && hyp_q && q.enc.all_contracts(), goal_q, t, "QF_BV",
+                           [&](const z3::model& m) { return q.render(name, m, run); });
+  o.seconds += e.seconds;
+  if (e.verdict == Verdict::Failed) {
+    o.counterexample = "counterexample of the exact bit-precise encoding:\n    " + e.counterexample;
+  } else {
+    o.counterexample = std::string("counterexample of the Int twin with kernel contracts; the exact encoding gave ") +
+                       verdict_name(e.verdict) + ", so it may be spurious:\n    " + o.counterexample;
+  }
+  return o;
+}
+
 }  // namespace
 
 void add_axis_obligations(ObligationList& out) {
@@ -458,33 +488,33 @@ void add_axis_obligations(ObligationList& out) {
       "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction), fixed config: "
       "v <= v_fast*1000 -> v' <= v_fast*1000 and step_speed <= v_fast*1000; base: v = 0 at rest",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
-        const z3::expr vmax = p.cfg.v_fast * p.enc.L32(ax::kSpeedScale);  // the code's product
-        return decide(p.c, p.valid() && p.s0.v <= vmax && p.enc.all_contracts(),
-                      p.r.state.v <= vmax && p.r.out.step_speed <= vmax, t, nullptr,
-                      [&](const z3::model& m) { return p.render("axis.speed.max", m, 2000); });
+        return prove_step("axis.speed.max", t, 2000, [](StepProblem& p) {
+          const Encoder& e = p.enc;
+          const z3::expr vmax = e.W(p.cfg.v_fast * e.L32(ax::kSpeedScale));  // the code's product
+          return std::pair{e.W(p.s0.v) <= vmax, e.W(p.r.state.v) <= vmax && e.W(p.r.out.step_speed) <= vmax};
+        });
       });
   add(out, "axis.soft_limits",
-      "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction), fixed config, I: (mode=Home -> homed=0) & (mode=Position & "
-      "homed -> soft_min <= target <= soft_max): while homed, no tick moves pos past "
+      "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction), fixed config, I: (mode=Home -> "
+      "homed=0) & (mode=Position & homed -> soft_min <= target <= soft_max): while homed, no tick moves pos past "
       "soft_min/soft_max (pos' within [min(pos,soft_min), max(pos,soft_max)]); re-referencing by a Home command "
       "excluded",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
-        z3::context& c = p.c;
-        auto inv = [&](const SymState& s) {
-          return z3::implies(is_mode(p.enc, s.mode, ax::Mode::Home), s.homed == 0) &&
-                 z3::implies(is_mode(p.enc, s.mode, ax::Mode::Position) && s.homed == 1,
-                             s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
-        };
-        const z3::expr hyp = p.valid() && inv(p.s0) && p.enc.all_contracts() && p.s0.homed == 1 &&
-                             !is_kind(p.enc, p.in.kind, ax::CmdKind::Home);
-        const SymState& n = p.r.state;
-        const z3::expr hi = z3::ite(p.s0.pos > p.cfg.soft_max, p.s0.pos, p.cfg.soft_max);
-        const z3::expr lo = z3::ite(p.s0.pos < p.cfg.soft_min, p.s0.pos, p.cfg.soft_min);
-        const z3::expr goal = inv(n) && z3::implies(n.homed == 1, n.pos <= hi && n.pos >= lo);
-        const z3::expr base = z3::implies(p.s0.homed == 0 || !is_mode(p.enc, p.s0.mode, ax::Mode::Home), inv(p.s0));
-        return decide(c, hyp, goal && base, t, nullptr, [&](const z3::model& m) { return p.render("axis.soft_limits", m, 2000); });
+        return prove_step("axis.soft_limits", t, 2000, [](StepProblem& p) {
+          const Encoder& e = p.enc;
+          auto inv = [&](const SymState& s) {
+            return z3::implies(is_mode(e, s.mode, ax::Mode::Home), s.homed == 0) &&
+                   z3::implies(is_mode(e, s.mode, ax::Mode::Position) && s.homed == 1,
+                               s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
+          };
+          const z3::expr hyp = inv(p.s0) && p.s0.homed == 1 && !is_kind(e, p.in.kind, ax::CmdKind::Home);
+          const SymState& n = p.r.state;
+          const z3::expr hi = z3::ite(p.s0.pos > p.cfg.soft_max, p.s0.pos, p.cfg.soft_max);
+          const z3::expr lo = z3::ite(p.s0.pos < p.cfg.soft_min, p.s0.pos, p.cfg.soft_min);
+          const z3::expr goal = inv(n) && z3::implies(n.homed == 1, n.pos <= hi && n.pos >= lo);
+          const z3::expr base = z3::implies(p.s0.homed == 0 || !is_mode(e, p.s0.mode, ax::Mode::Home), inv(p.s0));
+          return std::pair{hyp, goal && base};
+        });
       });
   add(out, "axis.dir.reverse_at_start_speed",
       "QF_BV, every valid state and input: DIR changes only when v <= s_fine (at rest: edge A), and never in a "
@@ -513,47 +543,51 @@ void add_axis_obligations(ObligationList& out) {
       "rest, or a retarget at least the stopping distance ahead in the direction of motion; blocked = 0. Claim: "
       "pos never crosses the target; arrival step_speed <= s_fine",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
-        z3::context& c = p.c;
-        Encoder& enc = p.enc;
-        const z3::expr sf = p.s_fine();
-        const z3::expr a = p.cfg.accel;
-        // ((t - pos) * dir) * kDist - frac with dir in {-1, 1} (state_valid): linear.
-        auto room_to = [&](const SymState& s, const z3::expr& goal_pos) {
-          return z3::ite(s.dir == 1, goal_pos - s.pos, s.pos - goal_pos) * c.int_val(kDist) - s.frac;
-        };
-        auto inv = [&](const SymState& s) {
-          const z3::expr pos_mode = is_mode(enc, s.mode, ax::Mode::Position);
-          const z3::expr moving = !is_phase(enc, s.phase, ax::Phase::Stop);
-          const z3::expr in_lim = s.homed == 0 || (s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
-          const z3::expr ahead = z3::ite(s.dir == 1, s.target - s.pos, s.pos - s.target) >= 1;
-          const z3::expr dd = enc.dd(s.v, sf, a, c.bool_val(false));
-          return z3::implies(pos_mode, in_lim) &&
-                 z3::implies(pos_mode && moving, ahead && z3::implies(s.v > sf, dd < room_to(s, s.target)));
-        };
-        const SymState& s = p.s0;
-        const SymInput& in = p.in;
-        const z3::expr t64 = z3::ite(is_kind(enc, in.kind, ax::CmdKind::MoveAbs), in.value, s.pos + in.value);
-        const z3::expr d_new = z3::ite(t64 > s.pos, c.int_val(1), z3::ite(t64 < s.pos, c.int_val(-1), c.int_val(0)));
-        const z3::expr dd_now = enc.dd(s.v, sf, a, c.bool_val(false));
-        const z3::expr reachable = is_phase(enc, s.phase, ax::Phase::Stop) ||
-                                   (d_new == s.dir && (s.v <= sf || dd_now < room_to(s, t64)));
-        const z3::expr move = is_kind(enc, in.kind, ax::CmdKind::MoveAbs) || is_kind(enc, in.kind, ax::CmdKind::MoveRel);
-        const z3::expr inputs = in.blocked == 0 && (is_kind(enc, in.kind, ax::CmdKind::None) || (move && reachable));
-        const SymState& n = p.r.state;
-        const z3::expr tt = n.target;
-        const z3::expr was_pos = is_mode(enc, n.mode, ax::Mode::Position) ||
-                                 (is_mode(enc, s.mode, ax::Mode::Position) && is_kind(enc, in.kind, ax::CmdKind::None));
-        // (t - pos') * (t - pos) >= 0, i.e. both on the same side (or on the target): never crosses.
-        const z3::expr x = tt - n.pos, y = tt - s.pos;
-        const z3::expr no_cross = (x >= 0 && y >= 0) || (x <= 0 && y <= 0);
-        const z3::expr arrive = z3::implies(n.pos == n.target && s.pos != n.target, p.r.out.step_speed <= sf);
-        const z3::expr goal = inv(n) && z3::implies(was_pos, no_cross && arrive);
-        const z3::expr hyp = p.valid() && inv(s) && inputs;
-        // Base case: the initial state (initial_state(): at rest, idle) satisfies I.
-        const z3::expr base = z3::implies(is_phase(enc, s.phase, ax::Phase::Stop) && is_mode(enc, s.mode, ax::Mode::Idle), inv(s));
-        return decide(c, hyp && enc.all_contracts(), goal && base, t, nullptr,
-                      [&](const z3::model& m) { return p.render("axis.position.no_overshoot", m, 200000); });
+        return prove_step("axis.position.no_overshoot", t, 200000, [](StepProblem& p) {
+          Encoder& e = p.enc;
+          const z3::expr sf = p.s_fine();
+          const z3::expr a = e.W(p.cfg.accel);
+          // (goal - pos) * dir in steps, dir in {-1, 1} (state_valid): linear in the Int twin.
+          auto ahead_of = [&](const SymState& s, const z3::expr& goal64) {
+            return z3::ite(s.dir == 1, goal64 - e.W(s.pos), e.W(s.pos) - goal64);
+          };
+          // ((goal - pos) * dir) * kDist - frac: the fine distance to the goal.
+          auto room_to = [&](const SymState& s, const z3::expr& goal64) {
+            return ahead_of(s, goal64) * e.L64(kDist) - e.W(s.frac);
+          };
+          auto inv = [&](const SymState& s) {
+            const z3::expr pos_mode = is_mode(e, s.mode, ax::Mode::Position);
+            const z3::expr moving = !is_phase(e, s.phase, ax::Phase::Stop);
+            const z3::expr in_lim = s.homed == 0 || (s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
+            const z3::expr dd = e.dd(e.W(s.v), sf, a, p.c.bool_val(false));
+            return z3::implies(pos_mode, in_lim) &&
+                   z3::implies(pos_mode && moving, ahead_of(s, e.W(s.target)) >= e.L64(1) &&
+                                                       z3::implies(e.W(s.v) > sf, dd < room_to(s, e.W(s.target))));
+          };
+          const SymState& s = p.s0;
+          const SymInput& in = p.in;
+          const z3::expr t64 = z3::ite(is_kind(e, in.kind, ax::CmdKind::MoveAbs), e.W(in.value), e.W(s.pos) + e.W(in.value));
+          const z3::expr d_new = z3::ite(t64 > e.W(s.pos), e.L8(1), z3::ite(t64 < e.W(s.pos), e.L8(-1), e.L8(0)));
+          const z3::expr dd_now = e.dd(e.W(s.v), sf, a, p.c.bool_val(false));
+          const z3::expr reachable = is_phase(e, s.phase, ax::Phase::Stop) ||
+                                     (d_new == s.dir && (e.W(s.v) <= sf || dd_now < room_to(s, t64)));
+          const z3::expr move = is_kind(e, in.kind, ax::CmdKind::MoveAbs) || is_kind(e, in.kind, ax::CmdKind::MoveRel);
+          const z3::expr inputs = in.blocked == 0 && (is_kind(e, in.kind, ax::CmdKind::None) || (move && reachable));
+          const SymState& n = p.r.state;
+          const z3::expr tt = e.W(n.target);
+          const z3::expr was_pos = is_mode(e, n.mode, ax::Mode::Position) ||
+                                   (is_mode(e, s.mode, ax::Mode::Position) && is_kind(e, in.kind, ax::CmdKind::None));
+          // (t - pos') * (t - pos) >= 0, i.e. both on the same side (or on the target): never crosses.
+          const z3::expr x = tt - e.W(n.pos), y = tt - e.W(s.pos);
+          const z3::expr zero = e.L64(0);
+          const z3::expr no_cross = (x >= zero && y >= zero) || (x <= zero && y <= zero);
+          const z3::expr arrive = z3::implies(n.pos == n.target && s.pos != n.target, e.W(p.r.out.step_speed) <= sf);
+          const z3::expr goal = inv(n) && z3::implies(was_pos, no_cross && arrive);
+          // Base case: the initial state (initial_state(): at rest, idle) satisfies I.
+          const z3::expr base =
+              z3::implies(is_phase(e, s.phase, ax::Phase::Stop) && is_mode(e, s.mode, ax::Mode::Idle), inv(s));
+          return std::pair{inv(s) && inputs, goal && base};
+        });
       });
   add(out, "axis.watchdog.timeout",
       "QF_BV 1-induction over watchdog_tick (uint16) with a ghost tick count n: silent = min(n, 300), so the "
@@ -591,27 +625,25 @@ void add_axis_obligations(ObligationList& out) {
       "since the stop began) and Phi(v) = v > s_fine ? DD(v) + s_fine : 0: T + Phi(v) <= Phi(v0); so the stop "
       "completes within DD(v0) + one tick at start speed; inputs: no frame (no command), any endstop/blocked",
       [](unsigned t) {
-        StepProblem p(shared_context(), Kernels::Contract, Sem::Int);
-        z3::context& c = p.c;
-        Encoder& enc = p.enc;
-        const z3::expr sf = p.s_fine();
-        const z3::expr a = p.cfg.accel;
-        auto phi = [&](const SymState& s) {
-          return z3::ite(s.v > sf, enc.dd(s.v, sf, a, c.bool_val(false)) + sf, c.int_val(0));
-        };
-        const z3::expr T = c.int_const("T"), phi0 = c.int_const("Phi0");
-        auto inv = [&](const SymState& s, const z3::expr& tt) {
-          return is_mode(enc, s.mode, ax::Mode::Idle) && tt >= 0 && tt + phi(s) <= phi0;
-        };
-        const z3::expr hyp0 = p.valid() && is_kind(enc, p.in.kind, ax::CmdKind::None) && inv(p.s0, T);
-        const z3::expr T2 = T + p.r.out.step_speed;
-        const z3::expr base = z3::implies(phi0 == phi(p.s0) && is_mode(enc, p.s0.mode, ax::Mode::Idle), inv(p.s0, c.int_val(0)));
-        const z3::expr goal = inv(p.r.state, T2) && base;
-        const z3::expr hyp = hyp0 && enc.all_contracts();  // after every dd() call above
-        return decide(c, hyp, goal, t, nullptr, [&](const z3::model& m) {
-          return "T=" + m.eval(T, true).to_string() + " Phi0=" + m.eval(phi0, true).to_string() +
-                 " Phi(s)=" + m.eval(phi(p.s0), true).to_string() + " Phi(s')=" + m.eval(phi(p.r.state), true).to_string() +
-                 "\n    " + p.render("axis.watchdog.stop_distance", m, 200000);
+        return prove_step("axis.watchdog.stop_distance", t, 200000, [](StepProblem& p) {
+          Encoder& e = p.enc;
+          const z3::expr sf = p.s_fine();
+          const z3::expr a = e.W(p.cfg.accel);
+          auto phi = [&](const SymState& s) {
+            return z3::ite(e.W(s.v) > sf, e.dd(e.W(s.v), sf, a, p.c.bool_val(false)) + sf, e.L64(0));
+          };
+          // Ghosts (64-bit in the bit-precise encoding, where the bounds keep the sums from wrapping:
+          // T <= Phi0 <= 2e18 and Phi <= 1e18 + 1e9).
+          const z3::expr T = e.var("T", 64), phi0 = e.var("Phi0", 64);
+          auto inv = [&](const SymState& s, const z3::expr& tt) {
+            return is_mode(e, s.mode, ax::Mode::Idle) && tt >= e.L64(0) && tt <= phi0 && tt + phi(s) <= phi0;
+          };
+          const z3::expr hyp = is_kind(e, p.in.kind, ax::CmdKind::None) && phi0 >= e.L64(0) &&
+                               phi0 <= e.L64(2'000'000'000'000'000'000LL) && inv(p.s0, T);
+          const z3::expr T2 = T + e.W(p.r.out.step_speed);
+          const z3::expr base =
+              z3::implies(phi0 == phi(p.s0) && is_mode(e, p.s0.mode, ax::Mode::Idle), inv(p.s0, e.L64(0)));
+          return std::pair{hyp, inv(p.r.state, T2) && base};
         });
       });
 }
