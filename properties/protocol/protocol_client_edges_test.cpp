@@ -11,6 +11,7 @@
 #include "client/client.hpp"
 #include "client/readable.hpp"
 #include "core/frame/echo_builder.hpp"
+#include "core/frame/echo_codec.hpp"
 
 namespace {
 
@@ -110,6 +111,38 @@ TEST(ProtocolClientEdges, UnknownRejectionReasonsAreShownAsUnknown) {
   e.y = {c::EchoStatus::Idle, 0};
   const std::string text = ap::client::describe(e);
   EXPECT_NE(text.find("[bad_crc at byte 36"), std::string::npos) << text;
+}
+
+// The echo side of the codec at its edges: a seq outside 0..999 is refused at the seq field;
+// a buffer longer than an echo is BadLength at the first byte past the frame (shorter: at its
+// end); a negative reason code (not produced by a board) decodes to "no rejection".
+TEST(ProtocolClientEdges, EchoCodecEdges) {
+  f::EchoFrame e;
+  e.seq = c::kSeqModulo;
+  EXPECT_EQ(f::validate(e), (f::Rejection{c::FrameError::DataOutOfRange, static_cast<std::uint16_t>(c::kSeqOffset)}));
+  EXPECT_EQ(ap::client::format(e), std::nullopt);
+  e.seq = c::kSeqModulo - 1;
+  const std::string good = *ap::client::format(e);
+  ASSERT_EQ(good.size(), c::kEchoLength);
+
+  const f::EchoFrame sentinel{7, {c::EchoStatus::Homing, 1}, {c::EchoStatus::Idle, 2}, {}};
+  f::EchoFrame out = sentinel;
+  const std::string longer = good + "0";
+  const auto as_bytes = [](const std::string& s) {
+    return std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(s.data()), s.size());
+  };
+  EXPECT_EQ(f::parse_echo(as_bytes(longer), out),
+            (f::Rejection{c::FrameError::BadLength, static_cast<std::uint16_t>(c::kEchoLength)}));
+  EXPECT_EQ(out, sentinel);
+  const std::string shorter = good.substr(0, good.size() - 3);
+  EXPECT_EQ(f::parse_echo(as_bytes(shorter), out),
+            (f::Rejection{c::FrameError::BadLength, static_cast<std::uint16_t>(shorter.size())}));
+  EXPECT_EQ(out, sentinel);
+  ASSERT_TRUE(f::parse_echo(as_bytes(good), out).ok());
+  EXPECT_EQ(out, e);
+
+  EXPECT_EQ(f::rejection_from_code(-1), (f::Rejection{c::FrameError::None, 0}));
+  EXPECT_TRUE(f::rejection_from_code(-1).ok());
 }
 
 }  // namespace
