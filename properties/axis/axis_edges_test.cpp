@@ -160,6 +160,28 @@ TEST(AxisEdges, StateInvariantsEachCount) {
   s = good;
   s.phase = static_cast<Phase>(4);
   EXPECT_FALSE(state_valid(s));
+  s = good;
+  s.level = 2;
+  EXPECT_FALSE(state_valid(s));
+  s = good;
+  s.latch_min = 2;
+  EXPECT_FALSE(state_valid(s));
+  s = good;
+  s.latch_max = 2;
+  EXPECT_FALSE(state_valid(s));
+  s = good;
+  s.homed = 2;
+  EXPECT_FALSE(state_valid(s));
+}
+
+// The braking distance is 0 at or below the start speed, and outside its documented range
+// (accel >= 1) it answers 0 instead of dividing by zero.
+TEST(AxisEdges, StopDistanceOutsideItsRange) {
+  EXPECT_EQ(stop_distance_fine(5000, 5000, 100), 0);
+  EXPECT_EQ(stop_distance_fine(4000, 5000, 100), 0);
+  EXPECT_GT(stop_distance_fine(5101, 5000, 100), 0);
+  EXPECT_EQ(stop_distance_fine(1'000'000, 5000, 0), 0);
+  EXPECT_EQ(stop_distance_fine(1'000'000, 5000, -7), 0);
 }
 
 // Names of enum bytes outside the enums (a corrupted state in a trace): a placeholder, never

@@ -6,6 +6,7 @@
 // typed rejections of invalid sets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "core/storage/fram_device.hpp"
 #include "core/storage/fram_map.hpp"
 #include "core/storage/parameters.hpp"
+#include "core/storage/record.hpp"
 #include "core/storage/store.hpp"
 #include "models/fram/mb85rs256b.hpp"
 
@@ -237,4 +239,25 @@ TEST(storage_faults, map_checks_reject_overlapping_empty_and_oversize_regions) {
   // ... and the real map passes both.
   EXPECT_TRUE(regions_disjoint(address_map()));
   EXPECT_TRUE(regions_fit_chip(address_map()));
+}
+
+// A copy whose CRC is intact but whose set breaks a cross rule (written by a buggy or older
+// firmware) is BadValue naming the item, and boot does not load it.
+TEST(storage_faults, intact_record_breaking_a_cross_rule_is_not_loaded) {
+  ParameterSet s = defaults();
+  s.soft_min_x_um = s.soft_max_x_um;
+  ASSERT_FALSE(validate(s).ok());
+  RecordBytes image{};
+  encode_record(s, 5, image);
+  const DecodeResult d = decode_record(image);
+  EXPECT_EQ(d.status, RecordStatus::BadValue);
+  EXPECT_EQ(d.bad_item, ParamId::SoftMinX);
+
+  FlakyBus b;
+  std::copy(image.begin(), image.end(), b.chip.memory().begin() + kCopyBase[0]);
+  ParameterStore store(b.bus());
+  const BootReport r = store.boot();
+  EXPECT_EQ(r.copy[0], RecordStatus::BadValue);
+  EXPECT_TRUE(r.defaults_used());
+  EXPECT_TRUE(store.current() == defaults());
 }
