@@ -1,6 +1,7 @@
 #include "replay.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -106,11 +107,20 @@ std::string violations(const Case& k) {
   const std::int64_t vmax = std::int64_t{c.v_fast} * ax::kSpeedScale;
   ax::State s = k.state;
   // The move is "reachable" when the true stopping distance plus this tick fits before the target.
+  auto room_to = [&](std::int64_t t) { return (t - s.pos) * s.dir * ax::kDistScale - s.frac; };
   const bool moving_pos = s.mode == ax::Mode::Position && s.phase != ax::Phase::Stop &&
                           (static_cast<std::int64_t>(s.target) - s.pos) * s.dir >= 1;
-  const std::int64_t room = (static_cast<std::int64_t>(s.target) - s.pos) * s.dir * ax::kDistScale - s.frac;
-  const bool reachable = moving_pos && (s.v <= sf || ref_dd(s.v, sf, c.accel) < room);
-  const std::int32_t target = s.target;
+  bool reachable = moving_pos && (s.v <= sf || ref_dd(s.v, sf, c.accel) < room_to(s.target));
+  std::int32_t target = s.target;
+  // A case that opens with a move command: the obligation's input assumption (a move from rest,
+  // or a retarget at least the stopping distance ahead in the direction of motion) decides.
+  if (!k.inputs.empty() && (k.inputs[0].cmd.kind == ax::CmdKind::MoveAbs || k.inputs[0].cmd.kind == ax::CmdKind::MoveRel)) {
+    const ax::Command& cmd = k.inputs[0].cmd;
+    const std::int64_t t = cmd.kind == ax::CmdKind::MoveAbs ? cmd.value : std::int64_t{s.pos} + cmd.value;
+    const int d_new = t > s.pos ? 1 : (t < s.pos ? -1 : 0);
+    reachable = s.phase == ax::Phase::Stop || (d_new == s.dir && (s.v <= sf || ref_dd(s.v, sf, c.accel) < room_to(t)));
+    if (t >= INT32_MIN && t <= INT32_MAX) target = static_cast<std::int32_t>(t);
+  }
   const std::int32_t start = s.pos;
   // A stop with no frames (axis.watchdog.stop_distance): from Idle and moving, with no command
   // in the case, the carriage travels at most DD(v0) + one tick at start speed, in fine units.
@@ -136,7 +146,7 @@ std::string violations(const Case& k) {
       if (s.homed != 0 && n.homed != 0 && in.cmd.kind != ax::CmdKind::Home &&
           (n.pos > std::max(s.pos, c.soft_max) || n.pos < std::min(s.pos, c.soft_min)))
         o << "tick " << t << ": soft limit crossed, pos " << s.pos << " -> " << n.pos << "\n";
-      if (reachable && n.target == target && s.mode == ax::Mode::Position) {
+      if (reachable && n.target == target && (s.mode == ax::Mode::Position || n.mode == ax::Mode::Position)) {
         if ((static_cast<std::int64_t>(target) - n.pos) * (static_cast<std::int64_t>(target) - start) < 0)
           o << "tick " << t << ": overshoot: pos " << n.pos << " passed target " << target << "\n";
         if (n.pos == target && s.pos != target && r.out.step_speed > sf)
@@ -144,9 +154,13 @@ std::string violations(const Case& k) {
       }
     }
     travelled += r.out.step_speed;
-    if (stopping && travelled > stop_budget) {
-      o << "tick " << t << ": stop not complete within its distance: " << travelled << " fine units > DD(v0) + s_fine = "
-        << stop_budget << "\n";
+    // Checked every tick: the travel so far plus what the stop still needs at full deceleration
+    // (so a stop that has already committed to too much travel fails at once, not after
+    // millions of ticks).
+    const std::int64_t still_needed = n.phase == ax::Phase::Stop ? 0 : (n.v > sf ? ref_dd(n.v, sf, c.accel) + sf : 0);
+    if (stopping && travelled + still_needed > stop_budget) {
+      o << "tick " << t << ": stop not complete within its distance: " << travelled << " fine units travelled + "
+        << still_needed << " still needed > DD(v0) + s_fine = " << stop_budget << "\n";
       break;
     }
     s = n;

@@ -156,6 +156,8 @@ z3::expr Encoder::dd_contract(const z3::expr& v, const z3::expr& s, const z3::ex
   const z3::expr f = dd_fun(lo32(v), lo32(s), lo32(a));
   const z3::expr va = v - a;
   const z3::expr f2 = dd_fun(lo32(va), lo32(s), lo32(a));
+  dd_apps.push_back({lo32(v), lo32(s), lo32(a)});
+  dd_apps.push_back({lo32(va), lo32(s), lo32(a)});
   return z3::implies(pre, f >= L64(0) && f <= L64(1'000'000'000'000'000'000LL) &&
                               z3::implies(va <= s, f == L64(0)) && z3::implies(va > s, f == va + f2));
 }
@@ -390,6 +392,7 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
     contracts.push_back(z3::implies(pre || (fw && !can_hi), lo <= bf && bf <= hi &&
                                              z3::implies(can_lo, bf <= s_fine || W(bf) + dd_bf < room)));
     rec("best_fit.pre", fw && !can_hi, [&] { return pre; });
+    bf_calls.push_back({bf, W(lo), W(hi), room, W(s_fine), W(a)});
   }
   const z3::expr v_next0 = z3::ite(reverse, z3::ite(rev_halt, L32(0), v_brake), z3::ite(can_hi, hi, bf));
   const z3::expr not_halt = run && !rev_halt;

@@ -67,6 +67,16 @@ struct Encoder {
     z3::expr x, q, r;
   };
   std::vector<Div> divs;  // Contract mode: shared quotient/remainder of x / kDist
+  // Contract mode: every DD(v, s, a) application and every best_fit value with its arguments,
+  // so a counterexample can be refined against the exact kernels (axis_obligations.cpp).
+  struct DdApp {
+    z3::expr v, s, a;
+  };
+  struct BestFitCall {
+    z3::expr bf, lo, hi, room, s, a;  // lo, hi, s, a widened; room int64
+  };
+  std::vector<DdApp> dd_apps;
+  std::vector<BestFitCall> bf_calls;
   z3::expr vstart;  // the config's v_start of the last step() (kernel preconditions)
   z3::func_decl dd_fun;  // DD(v, s, a): int32 x int32 x int32 -> int64 (Contract mode)
 
