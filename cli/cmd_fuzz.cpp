@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -300,14 +301,41 @@ FuzzStats fuzz_one(const FuzzTarget& t, const FuzzOptions& o) {
 
 }  // namespace
 
+namespace {
+// --build-dir (or AP_FUZZ_BUILD_DIR): a fuzz-preset build tree other than build/fuzz, e.g. one
+// engineer's own while others share the checkout. Empty: build/fuzz.
+std::string g_build_dir;
+
+std::string fuzz_build_dir() {
+  std::string d = g_build_dir;
+  if (d.empty()) {
+    const char* env = std::getenv("AP_FUZZ_BUILD_DIR");
+    if (env != nullptr) d = env;
+  }
+  if (d.empty()) return build_dir("fuzz");
+  return fs::absolute(fs::path(d)).lexically_normal().string();
+}
+
+bool build_fuzz_targets(const std::string& build, const std::vector<std::string>& names) {
+  if (build == build_dir("fuzz")) return ensure_built("fuzz", names, true);
+  std::string cmd = "cmake --build " + quote(build) + " --target";
+  for (const auto& n : names) cmd += " " + n;
+  int status = 0;
+  const std::string out = run_capture(cmd + " 2>&1", &status);
+  if (status != 0) std::fputs(out.c_str(), stderr);
+  return status == 0;
+}
+}  // namespace
+
 std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
   *ok = true;
   std::vector<FuzzStats> results;
-  const std::string build = build_dir("fuzz");
+  const std::string build = fuzz_build_dir();
   if (!fs::exists(build + "/CMakeCache.txt")) {
-    std::fprintf(stderr, "axisproof: configuring build/fuzz\n");
+    std::fprintf(stderr, "axisproof: configuring %s\n", build.c_str());
     int status = 0;
-    const std::string out = run_capture("cd " + quote(source_dir()) + " && cmake --preset fuzz 2>&1", &status);
+    const std::string out =
+        run_capture("cd " + quote(source_dir()) + " && cmake --preset fuzz -B " + quote(build) + " 2>&1", &status);
     if (status != 0) {
       std::fputs(out.c_str(), stderr);
       std::fprintf(stderr, "axisproof fuzz: configuring the fuzz preset failed\n");
@@ -339,7 +367,7 @@ std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
   }
   std::vector<std::string> names;
   for (const auto& t : chosen) names.push_back("fuzz_" + t.name);
-  if (!ensure_built("fuzz", names, true)) {
+  if (!build_fuzz_targets(build, names)) {
     std::fprintf(stderr, "axisproof fuzz: building the fuzz preset failed\n");
     *ok = false;
     return results;
@@ -367,6 +395,8 @@ void add_fuzz(CLI::App& app) {
   static FuzzOptions opts;
   auto* t = sub->add_option("-t,--target", targets, "Fuzz target to run (repeatable); see build/fuzz/fuzz_targets.txt");
   sub->add_flag("-a,--all", all, "Run every fuzz target")->excludes(t);
+  sub->add_option("--build-dir", g_build_dir,
+                  "Fuzz-preset build tree to use (default build/fuzz, or $AP_FUZZ_BUILD_DIR); configured with --preset fuzz if new");
   sub->add_option("--time", opts.seconds, "Seconds per target (default 60)")->check(CLI::PositiveNumber);
   sub->add_option("-j,--jobs", opts.jobs, "Parallel fuzzing processes (libFuzzer -fork=N, default 2)")->check(CLI::Range(1, 64));
   sub->add_flag("--no-save", opts.no_save,

@@ -3,9 +3,10 @@
 // fails on it).
 //
 // Script: a sequence of ops, each one byte (low nibble = op) plus arguments:
-//   0-5  a valid command frame built with the codec (7 argument bytes: X id, X data (2),
-//        Y id, Y data (2), subscriber slot), then one tick. Most ops are frames, so the
-//        deeper states (moves, parameter saves) are reached.
+//   0-5  an intact command frame (7 argument bytes: X id, X data (2), Y id, Y data (2),
+//        subscriber slot), then one tick. Most ops are frames, so the deeper states (moves,
+//        parameter saves) are reached. ID bytes >= 0xF0 give IDs just past the command
+//        table (see part_of): the board's callback table must refuse them itself.
 //   6    a raw UART chunk: length (mod 64) then that many bytes (the custom mutator below
 //        repairs the CRC of frame-shaped runs so they get past the CRC check)
 //   7    ticks, (n + 1) * 8, silent link
@@ -203,15 +204,53 @@ struct Harness {
   void frame_op(Reader& r) {
     frame::CommandFrame f;
     f.seq = static_cast<std::uint16_t>(++rig->seq % codec::kSeqModulo);
-    const auto& xi = codec::kCommands[r.u8() % codec::kCommandCount];
-    f.x = {xi.id, data_in(xi.range, r.u16())};
-    const auto& yi = codec::kCommands[r.u8() % codec::kCommandCount];
-    f.y = {yi.id, data_in(yi.range, r.u16())};
+    f.x = part_of(r.u8(), r.u16());
+    f.y = part_of(r.u8(), r.u16());
     f.subs[0] = slot_of(r.u8());
-    last_frame = Rig::bytes_of(f);
+    last_frame = wire_bytes(f);
     have_frame = true;
+    // Link liveness: an intact frame sent whole onto an idle link is accepted by the framer
+    // in this very tick (whatever the table then makes of it).
+    Board& b = *rig->board;
+    const bool idle = b.rx_pending() == 0 && b.framer_pending() == 0 && ticks < kMaxTicks;
+    const std::uint32_t accepted = b.counters().framer.accepted_frames;
     rig->send_raw(last_frame);
     tick();
+    if (idle && b.counters().framer.accepted_frames != accepted + 1) {
+      violation("an intact frame on an idle link was not accepted", -1, b.ticks());
+    }
+  }
+
+  // One axis part. ID bytes 0xF0..0xFF give the IDs just past the command table
+  // (kCommandCount .. kCommandCount + 15) with any data: intact frames the callback table's
+  // own bound check must reject. The others pick a command and data in its range.
+  static frame::AxisCommand part_of(std::uint8_t id, std::uint16_t raw) {
+    if (id >= 0xF0) {
+      return {static_cast<codec::CommandId>(codec::kCommandCount + (id & 0x0FU)), static_cast<std::int32_t>(raw)};
+    }
+    const auto& info = codec::kCommands[id % codec::kCommandCount];
+    return {info.id, data_in(info.range, raw)};
+  }
+
+  // The frame's bytes with a correct CRC, whatever its IDs (format_command would refuse an
+  // ID outside the table; the board must get it and refuse it itself).
+  static std::array<std::uint8_t, codec::kCommandLength> wire_bytes(const frame::CommandFrame& f) {
+    std::array<std::uint8_t, codec::kCommandLength> b{};
+    const std::span<std::uint8_t> out(b);
+    b[0] = static_cast<std::uint8_t>(codec::kCommandStart);
+    frame::fields::write_digits(out, codec::kSeqOffset, codec::kSeqWidth, f.seq);
+    frame::fields::write_digits(out, codec::kXIdOffset, codec::kIdWidth, static_cast<std::uint32_t>(f.x.id));
+    frame::fields::write_data(out, codec::kXDataOffset, f.x.data);
+    frame::fields::write_digits(out, codec::kYIdOffset, codec::kIdWidth, static_cast<std::uint32_t>(f.y.id));
+    frame::fields::write_data(out, codec::kYDataOffset, f.y.data);
+    for (std::size_t i = 0; i < f.subs.size(); ++i) {
+      const std::size_t at = codec::kSubsOffset + i * codec::kSlotWidth;
+      frame::fields::write_digits(out, at, codec::kSubIdWidth, static_cast<std::uint32_t>(f.subs[i].id));
+      frame::fields::write_digits(out, at + codec::kSubIdWidth, codec::kSubArgWidth, f.subs[i].arg);
+    }
+    frame::fields::write_hex16(out, codec::kCommandCrcOffset, frame::fields::payload_crc(out, codec::kCommandCrcOffset));
+    b[codec::kCommandEndOffset] = static_cast<std::uint8_t>(codec::kEnd);
+    return b;
   }
 
   void power_cut_op(Reader& r) {

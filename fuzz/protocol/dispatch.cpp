@@ -55,7 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Calls calls;
   f::CommandLink link(table, &calls, {nullptr, &axis_state, &sub_value});
   const std::span<const std::uint8_t> in(data + 1, size - 1);
-  f::CommandFramer shadow;  // a second framer predicts what the link's framer sees
+  f::RawCommandFramer shadow;  // a second framer predicts what the link's framer sees
   for (std::size_t i = 0; i < in.size(); ++i) {
     const auto event = shadow.push(in[i]);
     const auto seq_before = link.last_seq();
@@ -73,7 +73,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       continue;
     }
     require(echoes == 1);
-    const bool handled = event->rejection.ok() && table.find(static_cast<std::uint32_t>(event->frame.x.id)) != nullptr &&
+    // The link's framer checks syntax and CRC only; the codec's own tables (validate) and
+    // the installed slots decide the rest.
+    const bool handled = event->rejection.ok() && f::validate(event->frame).ok() && table.find(static_cast<std::uint32_t>(event->frame.x.id)) != nullptr &&
                          table.find(static_cast<std::uint32_t>(event->frame.y.id)) != nullptr;
     if (handled) {
       require(calls.count == 2 && calls.axis[0] == f::Axis::X && calls.axis[1] == f::Axis::Y);

@@ -195,7 +195,7 @@ void Board::receive() {
   }
 }
 
-void Board::handle(const frame::CommandFramer::Event& e) {
+void Board::handle(const frame::RawCommandFramer::Event& e) {
   if (!e.rejection.ok()) {
     // A malformed frame is answered but changes nothing else: no handler, no watchdog
     // refresh, last_seq kept (docs/protocol.md, "What a rejected frame may change").
@@ -207,6 +207,14 @@ void Board::handle(const frame::CommandFramer::Event& e) {
     // G15: only a Data Session carries commands; bytes seen otherwise are line noise from
     // the module's own traffic and nobody is listening for an answer.
     ++counters_.gated_frames;
+    return;
+  }
+  // The frame arrived intact; the callback table decides whether it means anything (an ID
+  // outside the table, data out of range, an empty slot). Such a frame is rejected like a
+  // malformed one, blocked or not.
+  if (const frame::Rejection r = table_.lookup(e.frame).rejection; !r.ok()) {
+    ++counters_.unhandled_frames;
+    echoes_[echo_count_++] = PendingEcho{true, r, last_seq_, {}};
     return;
   }
   if (block_ != Block::None) {

@@ -37,7 +37,7 @@ Rejection validate(const CommandFrame& f) {
   return {};
 }
 
-Rejection parse_command(std::span<const std::uint8_t> b, CommandFrame& out) {
+Rejection decode_command(std::span<const std::uint8_t> b, CommandFrame& out) {
   if (b.size() != c::kCommandLength) {
     return reject(c::FrameError::BadLength, b.size() < c::kCommandLength ? b.size() : c::kCommandLength);
   }
@@ -71,6 +71,13 @@ Rejection parse_command(std::span<const std::uint8_t> b, CommandFrame& out) {
   const auto crc = fields::read_hex16(b, c::kCommandCrcOffset, &bad);
   if (!crc) return bad_char();
   if (*crc != fields::payload_crc(b, c::kCommandCrcOffset)) return reject(c::FrameError::BadCrc, c::kCommandCrcOffset);
+  out = f;
+  return {};
+}
+
+Rejection parse_command(std::span<const std::uint8_t> b, CommandFrame& out) {
+  CommandFrame f;
+  if (auto r = decode_command(b, f); !r.ok()) return r;
   if (auto r = validate(f); !r.ok()) return r;
   out = f;
   return {};

@@ -2,7 +2,7 @@
 
 namespace ap::frame {
 
-EchoFrame CommandLink::handle(const CommandFramer::Event& event) {
+EchoFrame CommandLink::handle(const RawCommandFramer::Event& event) {
   if (!event.rejection.ok()) {
     last_rejection_ = event.rejection;
     return build_rejection_echo(last_seq_, event.rejection);

@@ -153,6 +153,9 @@ class Board {
   BoardCounters counters() const;
   std::uint32_t ticks() const { return ticks_; }
   std::uint16_t last_seq() const { return last_seq_; }
+  // Bytes received but not yet framed, and bytes of a frame the framer holds so far.
+  std::size_t rx_pending() const { return rx_count_; }
+  std::size_t framer_pending() const { return framer_.pending(); }
   frame::AxisEcho axis_echo(Axis a) const;
   std::int32_t position_um(Axis a) const;
 
@@ -169,7 +172,7 @@ class Board {
 
   void begin_of_cycle();
   void receive();
-  void handle(const frame::CommandFramer::Event& e);
+  void handle(const frame::RawCommandFramer::Event& e);
   void step_axes();
   void check_drivers();
   void send_echoes();
@@ -205,7 +208,9 @@ class Board {
   storage::ParameterStore store_;
   std::array<core::tmc2130::Driver, kAxes> drivers_;
   frame::CallbackTable table_{};
-  frame::CommandFramer framer_{};
+  // The link layer only (syntax, CRC): command IDs and data are checked by table_ (Klipper
+  // style), so an ID outside the table reaches table_'s own bound check.
+  frame::RawCommandFramer framer_{};
   Derived derived_{};
 
   std::array<std::uint8_t, kRxCapacity> rx_{};

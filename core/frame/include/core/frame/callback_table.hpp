@@ -8,9 +8,13 @@
 // accepted frame. Handlers are plain functions, not std::function, so the table is a
 // fixed array in .bss with no heap.
 //
-// Dispatch contract: the frame is validated again (a frame built by hand may be out of
-// range), then both handlers are looked up before either runs, so a frame is either
-// executed completely (X handler once, then Y handler once) or not at all.
+// Dispatch contract (Klipper style): the frame may come straight from the link layer
+// (decode_command: intact, but IDs 00..99 unchecked), so lookup() is what gives it a
+// meaning. Per axis part, in wire order: the table's own bound check on the ID (this is the
+// check that rejects an ID outside the table, unknown_command), the data range of that
+// command, then seq and subscriber slots (validate()), then both handlers must be
+// installed (unhandled). Both handlers are looked up before either runs, so a frame is
+// either executed completely (X handler once, then Y handler once) or not at all.
 // Unit-scope commands (codec::Scope::Unit) reach the handler once per axis part that
 // carries them; such handlers must be idempotent.
 #include <array>
@@ -29,6 +33,12 @@ enum class HandlerStatus : std::uint8_t {
 
 using Handler = HandlerStatus (*)(void* ctx, Axis axis, std::int32_t data);
 
+struct Lookup {
+  Rejection rejection;  // not ok(): x and y are null
+  Handler x = nullptr;
+  Handler y = nullptr;
+};
+
 struct DispatchResult {
   Rejection rejection;  // not ok(): no handler ran
   HandlerStatus x = HandlerStatus::Done;
@@ -45,12 +55,18 @@ class CallbackTable {
   // nullptr when id is outside the table or nothing is installed.
   Handler find(std::uint32_t id) const;
 
+  // Everything dispatch() checks, without running anything.
+  Lookup lookup(const CommandFrame& frame) const;
   DispatchResult dispatch(const CommandFrame& frame, void* ctx) const;
 
  private:
   static bool in_range(std::uint32_t id);
 
-  std::array<Handler, kSize> handlers_{};
+  // A plain array on purpose: clang's -fsanitize=bounds checks every index into it, so a
+  // bound check that lets kSize through is a finding (std::array::operator[] is not
+  // checked under libstdc++ without assertions, and ASan cannot see a read that stays
+  // inside the enclosing object).
+  Handler handlers_[kSize]{};  // NOLINT(*-avoid-c-arrays)
 };
 
 }  // namespace ap::frame

@@ -3,8 +3,10 @@
 //
 // What a rejected frame may change (issue 3 item 6): the counters and the echo it causes.
 // It does not run a handler, does not refresh the link watchdog (ticks_since_accepted keeps
-// growing) and does not move last_seq. An accepted frame whose command has no handler is
-// rejected the same way (FrameError::Unhandled).
+// growing) and does not move last_seq. The framer is the link layer only (syntax and CRC);
+// an intact frame whose command ID is outside the table, whose data is out of range or
+// whose command has no handler is rejected the same way by the callback table
+// (unknown_command, data_out_of_range, unhandled), and counted in unhandled_frames.
 #include <cstdint>
 #include <span>
 
@@ -31,7 +33,7 @@ class CommandLink {
   // sink(std::span<const std::uint8_t, codec::kEchoLength>) receives each echo to send.
   template <class Sink>
   void receive(std::span<const std::uint8_t> bytes, Sink&& sink) {
-    framer_.feed(bytes, [&](const CommandFramer::Event& event) {
+    framer_.feed(bytes, [&](const RawCommandFramer::Event& event) {
       const EchoFrame echo = handle(event);
       std::array<std::uint8_t, codec::kEchoLength> out{};
       // build_* only produce in-range echoes, so formatting cannot fail.
@@ -49,13 +51,13 @@ class CommandLink {
   Rejection last_rejection() const { return last_rejection_; }
 
   // Exposed for callers that frame bytes themselves (e.g. a fixed-length DMA receive).
-  EchoFrame handle(const CommandFramer::Event& event);
+  EchoFrame handle(const RawCommandFramer::Event& event);
 
  private:
   const CallbackTable& table_;
   void* handler_ctx_;
   EchoSource source_;
-  CommandFramer framer_{};
+  RawCommandFramer framer_{};
   std::uint32_t ticks_since_accepted_ = 0;
   std::uint16_t last_seq_ = 0;
   std::uint32_t unhandled_frames_ = 0;
