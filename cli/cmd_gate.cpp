@@ -3,18 +3,28 @@
 // A stage that could not run is NOT RUN, and NOT RUN fails the gate: a gate that skips
 // silently would pass firmware nobody checked. `--skip STAGE` only marks a stage NOT RUN.
 //
+// Builds are shared so the gate fits in 20 minutes on a 2-core machine: two full builds (dev
+// and asan) serve every stage. The asan preset carries, besides ASan + UBSan, clang
+// source-based coverage and the libFuzzer binaries (AP_COVERAGE, AP_FUZZ_BINARIES), so the
+// test stages write the coverage profiles and the fuzz smoke runs that build's fuzz_<t>; the
+// mutation runner reuses build/dev and build/asan through an overlay (ci/mutate).
+//
 // Stages (each one's output goes to out/gate/logs/<stage>.log):
 //   build-dev    dev preset (gcc-12, -Werror): everything, incrementally
-//   build-asan   asan preset (clang, ASan + UBSan)
-//   tests        ctest -L 'unit|property|proof' on the asan build
+//   build-asan   asan preset (clang, ASan + UBSan, coverage, fuzz binaries); re-configured
+//                from the preset when an older build/asan lacks coverage or fuzz binaries
+//   tests        ctest -L 'unit|property|proof' on the asan build (profiles to build/asan/profiles)
 //   proofs       `axisproof prove` (NOT RUN while it is the placeholder)
-//   fuzz         ctest -L fuzz on the asan build (replays corpora and regressions, and the
-//                ClusterFuzzLite build.sh check), then every target for --fuzz-time seconds
-//                (fork mode, fuzz preset; the tree is left untouched, findings go to out/fuzz/)
+//   fuzz         ctest -L fuzz on the asan build (replays corpora and regressions; not the
+//                ClusterFuzzLite build-script check, which builds a tree of its own and runs in
+//                `axisproof test`), then every fuzz_<t> of the asan build for --fuzz-time
+//                seconds over a copy of its corpus (the tree is left untouched, new inputs and
+//                findings go to out/gate/fuzz/<t>/)
 //   e2e          ctest -L e2e on the asan build (NOT RUN when there are no e2e tests)
 //   mutation     ci/mutate: every ci/mutants/*.patch must be killed
-//   coverage     ci/coverage tests: llvm-cov line + branch of core/ and protocol/, FAIL below
-//                90 % branch
+//   coverage     ci/coverage tests over the profiles the test stages wrote (the asan build);
+//                llvm-cov line + branch of core/ and protocol/, FAIL below 90 % branch. Falls
+//                back to the cov preset (a build of its own) when build/asan has no coverage.
 //   m4           ci/m4-build: Cortex-M4 static libraries, size table, symbol check
 // Then out/gate/report.md + report.html, --junit FILE, and the release artifact under
 // out/release/ (M4 libraries, size table, manifest.json / MANIFEST.md).
@@ -124,10 +134,25 @@ std::string self_exe() {
 
 std::map<std::string, bool> built_ok;
 
+bool cache_has(const std::string& preset, const std::string& entry) {
+  return slurp(build_dir(preset) + "/CMakeCache.txt").find("\n" + entry + "\n") != std::string::npos;
+}
+
+// The asan build serves the coverage and fuzz smoke stages only with these switches on.
+bool asan_shared() { return cache_has("asan", "AP_COVERAGE:BOOL=ON") && cache_has("asan", "AP_FUZZ_BINARIES:BOOL=ON"); }
+
+int build_jobs() {
+  const long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? static_cast<int>(n) : 2;
+}
+
 Outcome build_stage(const std::string& preset, const std::string& log) {
   std::string cmd;
-  if (!fs::exists(build_dir(preset) + "/CMakeCache.txt")) cmd = "cmake --preset " + preset + " && ";
-  cmd += "cmake --build --preset " + preset;
+  // A build tree configured before the preset gained its switches is configured again.
+  if (!fs::exists(build_dir(preset) + "/CMakeCache.txt") || (preset == "asan" && !asan_shared())) {
+    cmd = "cmake --preset " + preset + " && ";
+  }
+  cmd += "cmake --build --preset " + preset + " --parallel " + std::to_string(build_jobs());
   const int st = run_logged(cmd, log, R"(FAILED:|error:)");
   built_ok[preset] = st == 0;
   // Ninja's last progress line "[n/N]" tells how much was rebuilt.
@@ -150,6 +175,8 @@ int count_tests(const std::string& preset, const std::string& labels) {
   if (std::regex_search(out, m, std::regex(R"(Total Tests: (\d+))"))) return std::stoi(m[1].str());
   return 0;
 }
+
+std::string profile_dir() { return build_dir("asan") + "/profiles"; }
 
 Outcome ctest_stage(const std::string& labels, const std::string& junit, const std::string& log) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
@@ -198,38 +225,98 @@ Outcome proofs_stage(gate::Run& run, const std::string& log) {
 
 int fuzz_seconds = 10;
 
+long long stat_of(const std::string& text, const std::string& name) {
+  std::smatch m;
+  if (std::regex_search(text, m, std::regex(name + R"(:\s*(\d+))"))) return std::stoll(m[1].str());
+  return -1;
+}
+
+// The short run of one target: the asan build's libFuzzer binary (ASan + UBSan) for `seconds`
+// over a scratch corpus seeded from fuzz/corpus/<t> (read-only), with its dictionary;
+// new inputs and reproducers stay under out/gate/fuzz/<t>/.
+void fuzz_short_run(const FuzzTarget& t, gate::Run& run, const std::string& log, int* findings, bool* ok,
+                    long long* min_rate, std::string* slowest) {
+  const std::string src = source_dir();
+  const std::string dir = src + "/out/gate/fuzz/" + t.name;
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  fs::create_directories(dir + "/corpus");
+  fs::create_directories(dir + "/findings");
+  std::string dict;
+  for (const auto& d : {src + "/fuzz/dict/" + t.name + ".dict", src + "/fuzz/dict/" + t.group + ".dict"}) {
+    if (dict.empty() && fs::exists(d)) dict = d;
+  }
+  const std::string corpus = src + "/fuzz/corpus/" + t.name;
+  std::string cmd = "LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 "
+                    "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 " + quote(t.binary) +
+                    " -max_total_time=" + std::to_string(fuzz_seconds) + " -print_final_stats=1 -seed=1" +
+                    " -artifact_prefix=" + quote(dir + "/findings/") + (dict.empty() ? "" : " -dict=" + quote(dict)) + " " +
+                    quote(dir + "/corpus") + (fs::is_directory(corpus) ? " " + quote(corpus) : "");
+  const std::string tlog = dir + "/fuzz.log";
+  const int st = run_logged(cmd + " >" + quote(tlog) + " 2>&1", log);
+  const std::string text = slurp(tlog);
+  {
+    std::ofstream out(log, std::ios::app);
+    out << text;
+  }
+  const long long execs = stat_of(text, "stat::number_of_executed_units");
+  const long long rate = stat_of(text, "stat::average_exec_per_sec");
+  long long cov = -1;
+  const std::regex cov_re(R"(cov: (\d+))");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), cov_re); it != std::sregex_iterator(); ++it) {
+    cov = std::stoll((*it)[1].str());
+  }
+  int found = 0;
+  for (const auto& e : fs::directory_iterator(dir + "/findings", ec)) found += e.is_regular_file() ? 1 : 0;
+  if (st != 0 && found == 0) found = 1;  // died without an artifact: still a finding
+  long long corpus_files = 0;
+  for (const auto& d : {dir + "/corpus", corpus}) {
+    for (const auto& e : fs::directory_iterator(d, ec)) corpus_files += e.is_regular_file() ? 1 : 0;
+  }
+  if (execs < 0) *ok = false;  // the binary did not run as a fuzzer
+  *findings += found;
+  if (rate >= 0 && (*min_rate < 0 || rate < *min_rate)) {
+    *min_rate = rate;
+    *slowest = t.name;
+  }
+  run.details.fuzz.push_back({t.name, std::to_string(execs), std::to_string(rate), std::to_string(corpus_files),
+                              std::to_string(cov), std::to_string(found)});
+  std::printf("      %-20s %9lld execs %7lld exec/s  cov %lld  %s\n", t.name.c_str(), execs, rate, cov,
+              found ? "FINDING (out/gate/fuzz/<t>/findings/)" : "no finding");
+  std::fflush(stdout);
+}
+
 Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
   const auto listed = read_fuzz_targets(build_dir("asan"));
   if (listed.empty()) return {Result::NotRun, "no fuzz targets (fuzz/<group>/ with ap_add_fuzz_target)"};
-  const int replays = count_tests("asan", "fuzz");
-  const int st = run_logged("ctest --preset asan -L fuzz --no-tests=error --output-junit " +
-                                quote(source_dir() + "/out/gate/junit-fuzz-replay.xml"),
-                            log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
+  const std::string not_cfl = " -E '^fuzz\\.clusterfuzzlite_build_sh$'";
+  int st = 0;
+  const std::string n_out = run_capture("cd " + quote(source_dir()) + " && ctest --preset asan -N -L fuzz" + not_cfl + " 2>/dev/null", &st);
+  std::smatch nm;
+  const int replays = std::regex_search(n_out, nm, std::regex(R"(Total Tests: (\d+))")) ? std::stoi(nm[1].str()) : 0;
+  st = run_logged("ctest --preset asan -L fuzz" + not_cfl + " --no-tests=error --output-junit " +
+                      quote(source_dir() + "/out/gate/junit-fuzz-replay.xml"),
+                  log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
   if (st != 0) return {Result::Fail, "replay of corpora / regressions fails (" + std::to_string(replays) + " fuzz tests)"};
-  FuzzOptions o;
-  o.seconds = fuzz_seconds;
-  o.jobs = 2;
-  o.no_save = true;
+  std::vector<FuzzTarget> runnable;
+  for (const auto& t : listed) {
+    if (t.binary != "-" && fs::exists(t.binary)) runnable.push_back(t);
+  }
+  if (runnable.size() != listed.size()) {
+    return {Result::NotRun, std::to_string(replays) + " replay tests passed; build/asan has no libFuzzer binaries "
+                            "(configure it from the asan preset: AP_FUZZ_BINARIES)"};
+  }
   bool ok = true;
-  const auto stats = run_fuzz(o, &ok);
   int findings = 0;
   long long min_rate = -1;
   std::string slowest;
-  for (const auto& s : stats) {
-    findings += s.findings;
-    if (min_rate < 0 || s.exec_per_s < min_rate) {
-      min_rate = s.exec_per_s;
-      slowest = s.target;
-    }
-    run.details.fuzz.push_back({s.target, std::to_string(s.executions), std::to_string(s.exec_per_s),
-                                std::to_string(s.corpus_files), std::to_string(s.coverage), std::to_string(s.findings)});
-  }
-  std::string key = std::to_string(replays) + " replay tests; " + std::to_string(stats.size()) + " targets x " +
+  for (const auto& t : runnable) fuzz_short_run(t, run, log, &findings, &ok, &min_rate, &slowest);
+  std::string key = std::to_string(replays) + " replay tests; " + std::to_string(runnable.size()) + " targets x " +
                     std::to_string(fuzz_seconds) + " s, " + std::to_string(findings) + " findings";
-  if (!stats.empty()) key += ", slowest " + slowest + " " + std::to_string(min_rate) + " exec/s";
-  if (!ok) return {Result::Fail, key + " (a target could not run or build)"};
-  return {findings == 0 ? Result::Pass : Result::Fail, key + (findings ? " (reproducers in out/fuzz/<target>/findings/)" : "")};
+  if (min_rate >= 0) key += ", slowest " + slowest + " " + std::to_string(min_rate) + " exec/s";
+  if (!ok) return {Result::Fail, key + " (a target did not run as a fuzzer; see log)"};
+  return {findings == 0 ? Result::Pass : Result::Fail, key + (findings ? " (reproducers in out/gate/fuzz/<target>/findings/)" : "")};
 }
 
 Outcome e2e_stage(const std::string& log) {
@@ -244,14 +331,20 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
   for (const auto& e : fs::directory_iterator(source_dir() + "/ci/mutants", ec)) any = any || e.path().extension() == ".patch";
   if (!any) return {Result::NotRun, "no mutants in ci/mutants/"};
   fs::remove(source_dir() + "/out/mutate/report.tsv", ec);
-  // The runner's baseline (every check passes on the unmutated tree) is what the earlier
-  // stages just showed on the same sources; only when one of them did not pass does it run.
+  // The runner judges each mutant in build/dev and build/asan (overlay mode, ci/mutate), so
+  // both must have built. Its baseline of the Killed-by checks always runs (the earlier stages
+  // ran the asan tests, not the dev ones); the wider stages' baseline is what the earlier
+  // stages just showed on the same sources, so it is skipped when they all passed.
+  if (!built_ok["dev"] || !built_ok["asan"]) return {Result::NotRun, "build (dev) or build (asan) failed"};
   bool earlier_pass = true;
   for (const auto& r : run.rows) {
-    if (r.stage != "build (dev)" && r.outcome.result == Result::Fail) earlier_pass = false;
-    if ((r.stage == "unit/property/proof tests" || r.stage == "fuzz smoke") && r.outcome.result != Result::Pass) earlier_pass = false;
+    if ((r.stage == "unit/property/proof tests" || r.stage == "fuzz smoke" || r.stage == "end-to-end scenarios") &&
+        r.outcome.result != Result::Pass) {
+      earlier_pass = false;
+    }
   }
-  const int st = run_logged(std::string("ci/mutate") + (earlier_pass ? " --no-baseline" : ""), log, R"(^\[\d+/\d+\]|^mutate: (baseline|the unmutated|configuring|building))");
+  const int st = run_logged(std::string("ci/mutate --jobs ") + std::to_string(build_jobs()) + (earlier_pass ? " --no-wide-baseline" : ""), log,
+                            R"(^\[\d+/\d+\]|^mutate: )");
   std::ifstream tsv(source_dir() + "/out/mutate/report.tsv");
   std::string line;
   std::getline(tsv, line);  // header
@@ -271,7 +364,7 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
   const std::string text = slurp(log);
   std::smatch m;
   if (std::regex_search(text, m, std::regex(R"(mutation suite: ([^\n]*))"))) run.details.mutation_summary = m[1].str();
-  if (total == 0) return {st == 0 ? Result::Fail : Result::Fail, "runner failed before any mutant (baseline or build; see log)"};
+  if (total == 0) return {Result::Fail, "runner failed before any mutant (baseline or build; see log)"};
   std::string key = std::to_string(killed) + "/" + std::to_string(total) + " killed";
   for (size_t i = 0; i < bad.size() && i < 3; ++i) key += (i ? ", " : "; ") + bad[i];
   if (bad.size() > 3) key += ", ...";
@@ -281,12 +374,16 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
 Outcome coverage_stage(gate::Run& run, const std::string& log) {
   char thr[16];
   std::snprintf(thr, sizeof thr, "%.0f", kMinBranchCoverage);
-  const int st = run_logged("ci/coverage tests --min-branch " + std::string(thr), log, R"(^coverage)");
+  // The test stages of the asan build wrote the profiles; without them (an asan build without
+  // coverage), ci/coverage builds the cov preset and runs the suite again.
+  const bool shared = asan_shared() && fs::is_directory(profile_dir()) && !fs::is_empty(profile_dir());
+  const std::string from = shared ? " --build-dir " + quote(build_dir("asan")) + " --profiles " + quote(profile_dir()) : "";
+  const int st = run_logged("ci/coverage tests" + from + " --min-branch " + std::string(thr), log, R"(^coverage)");
   const auto kv = read_kv(source_dir() + "/out/coverage/tests/summary.txt");
   if (kv.count("branch_percent") == 0) return {Result::Fail, "no coverage figures (see log)"};
   const std::string key = "branch " + kv.at("branch_percent") + " % (min " + thr + " %), line " + kv.at("line_percent") +
                           " %, " + kv.at("files") + " files";
-  run.details.coverage_summary = "core/ + protocol/ from the whole test suite (cov preset): lines " + kv.at("line_percent") +
+  run.details.coverage_summary = "core/ + protocol/ from the whole test suite (" + std::string(shared ? "asan build, the gate's test stages" : "cov preset") + "): lines " + kv.at("line_percent") +
                                  " % of " + kv.at("lines") + ", branches " + kv.at("branch_percent") + " % of " +
                                  kv.at("branches") + "; the gate requires at least " + thr + " % branch coverage.";
   std::ifstream rep(source_dir() + "/out/coverage/tests/report.txt");
@@ -357,7 +454,11 @@ void add_gate(CLI::App& app) {
         {"build-dev", "build (dev)", [](gate::Run&, std::string& l) { return build_stage("dev", l); }},
         {"build-asan", "build (asan)", [](gate::Run&, std::string& l) { return build_stage("asan", l); }},
         {"tests", "unit/property/proof tests",
-         [](gate::Run&, std::string& l) { return ctest_stage("unit|property|proof", source_dir() + "/out/gate/junit-tests.xml", l); }},
+         [](gate::Run&, std::string& l) {
+           std::error_code rm_ec;
+           fs::remove_all(profile_dir(), rm_ec);  // the coverage stage reads what this and the later test stages write
+           return ctest_stage("unit|property|proof", source_dir() + "/out/gate/junit-tests.xml", l);
+         }},
         {"proofs", "proofs", [](gate::Run& r, std::string& l) { return proofs_stage(r, l); }},
         {"fuzz", "fuzz smoke", [](gate::Run& r, std::string& l) { return fuzz_stage(r, l); }},
         {"e2e", "end-to-end scenarios", [](gate::Run&, std::string& l) { return e2e_stage(l); }},

@@ -19,8 +19,20 @@
 # ap_add_test, ap_add_fuzz_target and ap_add_bench do nothing.
 # AP_FUZZ_ENGINE (set by .clusterfuzzlite/build.sh from $LIB_FUZZING_ENGINE): link flags of an
 # external fuzzing engine, used instead of -fsanitize=fuzzer.
+# AP_FUZZ_BINARIES (the asan preset): also build the libFuzzer binaries fuzz_<name>, with every
+# object compiled with -fsanitize=fuzzer-no-link, but without the fuzz preset's other switches
+# (no AP_FUZZING_BUILD, Debug). One clang build then serves the tests, the gate's fuzz smoke
+# and (with AP_COVERAGE) the coverage report; the fuzz preset stays the optimised one for
+# long fuzzing runs (`axisproof fuzz`).
 
 option(AP_CFL_CHECK "Register the ctest that runs .clusterfuzzlite/build.sh locally (clang builds)" ON)
+option(AP_FUZZ_BINARIES "Build the libFuzzer binaries fuzz_<name> in a non-fuzz preset (clang)" OFF)
+if(AP_FUZZ_BINARIES AND NOT AP_FUZZ AND NOT AP_MCU_ONLY)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "AP_FUZZ_BINARIES needs clang (libFuzzer)")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()
 set(AP_CORE_FLAGS -fno-exceptions -fno-rtti)
 set(AP_CORE_LIBS "" CACHE INTERNAL "core libraries")
 
@@ -67,7 +79,7 @@ function(ap_add_fuzz_target name)
   add_test(NAME fuzz.${name}.replay
            COMMAND replay_${name} ${CMAKE_SOURCE_DIR}/fuzz/corpus/${name} ${CMAKE_SOURCE_DIR}/fuzz/regressions/${name})
   set_tests_properties(fuzz.${name}.replay PROPERTIES LABELS fuzz)
-  if(AP_FUZZ)
+  if(AP_FUZZ OR AP_FUZZ_BINARIES)
     add_executable(fuzz_${name} ${A_SOURCES})
     target_link_libraries(fuzz_${name} PRIVATE ${A_LIBS})
     if(AP_FUZZ_ENGINE)
@@ -113,9 +125,9 @@ function(_ap_write_lists)
   file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/core_libs.txt CONTENT "${_text}")
   # .clusterfuzzlite/build.sh must keep working with the standard OSS-Fuzz variables; this
   # runs it the way ClusterFuzzLite would, with the local clang and libFuzzer (asan and fuzz
-  # presets; not in cov, and not in the mutation runner's build, which sets AP_CFL_CHECK=OFF).
+  # presets; not in cov, which has no sanitizer).
   if(AP_CFL_CHECK AND CMAKE_CXX_COMPILER_ID MATCHES "Clang" AND (AP_SANITIZE OR AP_FUZZ)
-     AND NOT AP_COVERAGE AND NOT AP_FUZZ_ENGINE AND _lines)
+     AND NOT AP_FUZZ_ENGINE AND _lines)
     add_test(NAME fuzz.clusterfuzzlite_build_sh
              COMMAND ${CMAKE_SOURCE_DIR}/ci/check-clusterfuzzlite ${CMAKE_BINARY_DIR}/cfl-check)
     set_tests_properties(fuzz.clusterfuzzlite_build_sh PROPERTIES LABELS fuzz TIMEOUT 900)
