@@ -333,12 +333,15 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
   fs::remove(source_dir() + "/out/mutate/report.tsv", ec);
   // The runner judges each mutant in build/dev and build/asan (overlay mode, ci/mutate), so
   // both must have built. Its baseline of the Killed-by checks always runs (the earlier stages
-  // ran the asan tests, not the dev ones); the wider stages' baseline is what the earlier
-  // stages just showed on the same sources, so it is skipped when they all passed.
+  // ran the asan tests, not the dev ones); the wider stages' baseline (ctest labels and
+  // `axisproof prove`) is what the earlier stages just showed on the same sources, so it is
+  // skipped when they all passed; otherwise the runner runs it, and leaves out any wider stage
+  // that fails on the unmutated tree.
   if (!built_ok["dev"] || !built_ok["asan"]) return {Result::NotRun, "build (dev) or build (asan) failed"};
   bool earlier_pass = true;
   for (const auto& r : run.rows) {
-    if ((r.stage == "unit/property/proof tests" || r.stage == "fuzz smoke" || r.stage == "end-to-end scenarios") &&
+    if ((r.stage == "unit/property/proof tests" || r.stage == "proofs" || r.stage == "fuzz smoke" ||
+         r.stage == "end-to-end scenarios") &&
         r.outcome.result != Result::Pass) {
       earlier_pass = false;
     }
