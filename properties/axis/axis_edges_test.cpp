@@ -71,8 +71,8 @@ TEST(AxisEdges, TargetOnALimitIsPulledInward) {
 
 // At the edge of the representable range: 201 um pitch, 200 usteps/rev; a limit of
 // 1005000001 um is 1000000000.995 usteps, inward kPosMax, while the target on that limit rounds
-// to kPosMax + 1. The result must never be a position beyond kPosMax (today: OutOfLimits).
-TEST(AxisEdges, TargetAtTheRepresentableLimitNeverExceedsIt) {
+// to kPosMax + 1. As documented, the target is pulled back onto the limit (not refused).
+TEST(AxisEdges, TargetAtTheRepresentableLimitIsPulledOntoIt) {
   const Mechanics m{201, 200, 1};
   const int32_t max_um = 1'005'000'001;
   const UstepLimits lim = limits_to_usteps(0, max_um, m);
@@ -80,21 +80,15 @@ TEST(AxisEdges, TargetAtTheRepresentableLimitNeverExceedsIt) {
   EXPECT_EQ(lim.max, kPosMax);
   EXPECT_EQ(um_to_usteps(max_um, m, Round::Nearest).error, Error::OutOfLimits);
   const Converted t = target_to_usteps(max_um, 0, max_um, m);
-  if (t.error == Error::None) {
-    EXPECT_LE(t.value, lim.max);
-  } else {
-    EXPECT_EQ(t.error, Error::OutOfLimits);
-  }
+  EXPECT_EQ(t.error, Error::None);
+  EXPECT_EQ(t.value, kPosMax);
   // Mirror image at the lower end.
   const UstepLimits nlim = limits_to_usteps(-max_um, 0, m);
   ASSERT_EQ(nlim.error, Error::None);
   EXPECT_EQ(nlim.min, -kPosMax);
   const Converted nt = target_to_usteps(-max_um, -max_um, 0, m);
-  if (nt.error == Error::None) {
-    EXPECT_GE(nt.value, nlim.min);
-  } else {
-    EXPECT_EQ(nt.error, Error::OutOfLimits);
-  }
+  EXPECT_EQ(nt.error, Error::None);
+  EXPECT_EQ(nt.value, -kPosMax);
 }
 
 TEST(AxisEdges, EncoderInputBounds) {

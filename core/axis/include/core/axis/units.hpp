@@ -107,12 +107,12 @@ struct UstepLimits {
   if (lim.error != Error::None) {
     return {0, lim.error};
   }
-  const Converted t = um_to_usteps(um, m, Round::Nearest);
-  if (t.error != Error::None) {
-    return t;
-  }
-  const int32_t v = t.value < lim.min ? lim.min : (t.value > lim.max ? lim.max : t.value);
-  return {v, Error::None};
+  // Nearest in 64 bits, then the clamp: a target on a limit at the edge of the position range
+  // rounds to kPosMax + 1 before the clamp pulls it back onto the (inward-rounded) limit.
+  // |um| < 2^31, usteps/rev <= 256000 < 2^18: the product fits int64.
+  const int64_t t = detail::div_round(static_cast<int64_t>(um) * usteps_per_rev(m), m.pitch_um, Round::Nearest);
+  const int64_t v = t < lim.min ? lim.min : (t > lim.max ? lim.max : t);
+  return {static_cast<int32_t>(v), Error::None};
 }
 
 // usteps -> um (nearest) for the echo; |usteps| <= 1e9 * pitch 1e5 < 2^63.
