@@ -126,8 +126,13 @@ std::string violations(const Case& k) {
   // in the case, the carriage travels at most DD(v0) + one tick at start speed, in fine units.
   bool no_commands = true;
   for (const auto& in : k.inputs) no_commands = no_commands && in.cmd.kind == ax::CmdKind::None;
-  const bool stopping = cfg_ok && ax::state_valid(s) && no_commands && s.mode == ax::Mode::Idle &&
-                        s.phase != ax::Phase::Stop;
+  // The same budget for a Position target that is not reachable (axis.position.overrun): behind,
+  // at the carriage, or ahead closer than the stopping distance.
+  const bool pos_unreachable =
+      s.mode == ax::Mode::Position && ((static_cast<std::int64_t>(s.target) - s.pos) * s.dir < 1 ||
+                                       (s.v > sf && ref_dd(s.v, sf, c.accel) >= room_to(s.target)));
+  const bool stopping = cfg_ok && ax::state_valid(s) && no_commands &&
+                        (s.mode == ax::Mode::Idle || pos_unreachable) && s.phase != ax::Phase::Stop;
   const std::int64_t stop_budget = s.v > sf ? ref_dd(s.v, sf, c.accel) + sf : 0;
   std::int64_t travelled = 0;
   const int total = static_cast<int>(k.inputs.size()) + k.run;

@@ -376,6 +376,11 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
   rec("can_stop.v+dd", fw && !(hi <= s_fine), [&] { return
                     z3::bvadd_no_overflow(W(hi), dd_hi, true) && z3::bvadd_no_underflow(W(hi), dd_hi); });
   const z3::expr can_hi = hi <= s_fine || W(hi) + dd_hi < room;
+  if (kernels == Kernels::Contract) {
+    // axis.dd.monotone at (v_brake, hi): v + DD(v) grows with v.
+    const z3::expr dd_vb = dd(W(v_brake), W(s_fine), W(a), c.bool_val(false));
+    contracts.push_back(z3::implies(fw && v_brake > s_fine && v_brake <= hi, W(v_brake) + dd_vb <= W(hi) + dd_hi));
+  }
   z3::expr bf(c);
   if (kernels == Kernels::Exact) {
     bf = lo32(best_fit(Arith(c, sem, arith_checks(), fw && !can_hi), W(lo), W(hi), room, W(s_fine), W(a)));
@@ -389,8 +394,10 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
     const z3::expr dd_bf = dd(W(bf), W(s_fine), W(a), c.bool_val(false));
     const z3::expr dd_lo = dd(W(lo), W(s_fine), W(a), c.bool_val(false));
     const z3::expr can_lo = lo <= s_fine || W(lo) + dd_lo < room;
+    // ... and when even full braking (lo) cannot stop in time, best_fit brakes fully: bf = lo.
     contracts.push_back(z3::implies(pre || (fw && !can_hi), lo <= bf && bf <= hi &&
-                                             z3::implies(can_lo, bf <= s_fine || W(bf) + dd_bf < room)));
+                                             z3::implies(can_lo, bf <= s_fine || W(bf) + dd_bf < room) &&
+                                             z3::implies(!can_lo, bf == lo)));
     rec("best_fit.pre", fw && !can_hi, [&] { return pre; });
     bf_calls.push_back({bf, W(lo), W(hi), room, W(s_fine), W(a)});
   }

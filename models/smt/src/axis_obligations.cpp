@@ -254,6 +254,15 @@ std::string kernel_case(const std::string& name, const z3::model& m, const Kerne
   return o.str();
 }
 
+// (goal - pos) * dir in steps, dir in {-1, 1} (state_valid): a select, linear in the Int twin.
+z3::expr steps_ahead(const Encoder& e, const SymState& s, const z3::expr& goal64) {
+  return z3::ite(s.dir == 1, goal64 - e.W(s.pos), e.W(s.pos) - goal64);
+}
+// ((goal - pos) * dir) * kDist - frac: the fine distance to the goal in the direction of motion.
+z3::expr fine_room(const Encoder& e, const SymState& s, const z3::expr& goal64) {
+  return steps_ahead(e, s, goal64) * e.L64(kDist) - e.W(s.frac);
+}
+
 // Step-level claims written once over the encoder's semantics. They are proved on the Int
 // twin with the kernel contracts (QF_UFLIA: fast). When that fails, the same claim is asked of
 // the exact bit-precise encoding (exact kernels, QF_BV): a model there is a counterexample of
@@ -354,6 +363,37 @@ Outcome prove_step(const std::string& name, unsigned t, int run, const StepClaim
   return o;
 }
 
+// best_fit's contract (brakes_fully = false) and its full-braking clause (true), two queries.
+Outcome best_fit_contract(unsigned t, bool brakes_fully) {
+  z3::context& c = shared_context();
+  const KernelVars k(c);
+  const z3::expr lo = c.int_const("lo"), hi = c.int_const("hi"), room = c.int_const("room");
+  std::vector<axis::PieceTerms> pieces;
+  const z3::expr r = axis::best_fit(k.ar(nullptr), lo, hi, room, k.s, k.a, &pieces);
+  const z3::func_decl D = c.function("DDint", c.int_sort(), c.int_sort());
+  auto can = [&](const z3::expr& x) { return x <= k.s || x + D(x) < room; };
+  z3::expr lemma = c.bool_val(true);
+  for (const auto& p : pieces) {
+    lemma = lemma && z3::implies(p.m >= 0 && p.m <= ax::kFineSpeedMax && p.num >= 0 && p.x <= p.q &&
+                                     p.x >= p.p_lo && p.x <= p.p_hi,
+                                 p.x + D(p.x) < room);
+  }
+  // axis.dd.monotone at (lo, x) for each piece's candidate x.
+  for (const auto& p : pieces) {
+    if (!brakes_fully) break;
+    lemma = lemma && z3::implies(k.s < lo && lo <= p.x && p.x <= ax::kFineSpeedMax, lo + D(lo) <= p.x + D(p.x));
+  }
+  const z3::expr pre = k.pre() && lo >= 1 && lo <= hi && hi <= ax::kFineSpeedMax && room >= 1 &&
+                       room <= c.int_val(std::int64_t{3'000'000'000'000'000});
+  const z3::expr goal = brakes_fully ? z3::implies(!can(lo), r == lo)
+                                     : lo <= r && r <= hi && z3::implies(can(lo), can(r));
+  return decide(c, pre && lemma, goal, t, nullptr, [&](const z3::model& m) {
+    return "lo=" + m.eval(lo, true).to_string() + " hi=" + m.eval(hi, true).to_string() +
+           " room=" + m.eval(room, true).to_string() + " best_fit=" + m.eval(r, true).to_string() + " " +
+           kernel_case(brakes_fully ? "axis.best_fit.brakes_fully" : "axis.best_fit.contract", m, k);
+  });
+}
+
 }  // namespace
 
 void add_axis_obligations(ObligationList& out) {
@@ -423,6 +463,32 @@ void add_axis_obligations(ObligationList& out) {
                  kernel_case("axis.dd.recurrence", m, k);
         });
       });
+  add(out, "axis.dd.monotone",
+      "induction on v2 (steps of accel >= 1, well-founded above s_fine), step in QF_UFLIA with DD uninterpreted "
+      "and constrained by axis.dd.bound/zero/recurrence: s_fine < v1 <= v2 -> v1 + DD(v1) <= v2 + DD(v2) (the "
+      "distance to stop, this tick included, grows with the speed)",
+      [](unsigned t) {
+        z3::context& c = shared_context();
+        const z3::expr s = c.int_const("s_fine"), a = c.int_const("accel");
+        const z3::expr v1 = c.int_const("v1"), v2 = c.int_const("v2");
+        const z3::func_decl D = c.function("DDmono", c.int_sort(), c.int_sort());
+        auto f = [&](const z3::expr& x) { return x + D(x); };
+        // The proved facts about DD at the four speeds involved.
+        z3::expr facts = c.bool_val(true);
+        for (const z3::expr& x : {v1, v2, v1 - a, v2 - a}) facts = facts && D(x) >= 0;
+        for (const z3::expr& x : {v1, v2}) {
+          facts = facts && z3::implies(x - a <= s, D(x) == 0) && z3::implies(x - a > s, D(x) == (x - a) + D(x - a));
+        }
+        const z3::expr ranges = s >= 1000 && s <= ax::kFineSpeedMax && a >= 1 && a <= ax::kAccelMax &&
+                                v2 <= ax::kFineSpeedMax;
+        // Induction hypothesis: the claim for the pair one braking tick lower (smaller v2).
+        const z3::expr ih = z3::implies(s < v1 - a && v1 - a <= v2 - a, f(v1 - a) <= f(v2 - a));
+        return decide(c, ranges && facts && ih && s < v1 && v1 <= v2, f(v1) <= f(v2), t, nullptr,
+                      [&](const z3::model& m) {
+                        return "v1=" + m.eval(v1, true).to_string() + " v2=" + m.eval(v2, true).to_string() +
+                               " s_fine=" + m.eval(s, true).to_string() + " accel=" + m.eval(a, true).to_string();
+                      });
+      });
   add(out, "axis.best_fit.piece_quotient",
       "QF_NIA lemma: s_fine+1+m*a <= x <= s_fine+(m+1)*a -> (x - s_fine - 1) / a = m (x lies in piece m)",
       [](unsigned t) {
@@ -454,28 +520,12 @@ void add_axis_obligations(ObligationList& out) {
   add(out, "axis.best_fit.contract",
       "QF_UFNIA (DD uninterpreted, constrained by axis.best_fit.piece at the three unrolled pieces): "
       "lo <= best_fit <= hi and can_stop(lo) -> can_stop(best_fit), for 1 <= lo <= hi <= 1e9, 1 <= room <= 3e15",
-      [](unsigned t) {
-        z3::context& c = shared_context();
-        const KernelVars k(c);
-        const z3::expr lo = c.int_const("lo"), hi = c.int_const("hi"), room = c.int_const("room");
-        std::vector<axis::PieceTerms> pieces;
-        const z3::expr r = axis::best_fit(k.ar(nullptr), lo, hi, room, k.s, k.a, &pieces);
-        const z3::func_decl D = c.function("DDint", c.int_sort(), c.int_sort());
-        auto can = [&](const z3::expr& x) { return x <= k.s || x + D(x) < room; };
-        z3::expr lemma = c.bool_val(true);
-        for (const auto& p : pieces) {
-          lemma = lemma && z3::implies(p.m >= 0 && p.m <= ax::kFineSpeedMax && p.num >= 0 && p.x <= p.q &&
-                                           p.x >= p.p_lo && p.x <= p.p_hi,
-                                       p.x + D(p.x) < room);
-        }
-        const z3::expr pre = k.pre() && lo >= 1 && lo <= hi && hi <= ax::kFineSpeedMax && room >= 1 &&
-                             room <= c.int_val(std::int64_t{3'000'000'000'000'000});
-        return decide(c, pre && lemma, lo <= r && r <= hi && z3::implies(can(lo), can(r)), t, nullptr, [&](const z3::model& m) {
-          return "lo=" + m.eval(lo, true).to_string() + " hi=" + m.eval(hi, true).to_string() +
-                 " room=" + m.eval(room, true).to_string() + " best_fit=" + m.eval(r, true).to_string() + " " +
-                 kernel_case("axis.best_fit.contract", m, k);
-        });
-      });
+      [](unsigned t) { return best_fit_contract(t, false); });
+  add(out, "axis.best_fit.brakes_fully",
+      "QF_UFNIA (DD uninterpreted, constrained by axis.best_fit.piece at the three unrolled pieces and "
+      "axis.dd.monotone): !can_stop(lo) -> best_fit = lo, i.e. when even full braking cannot stop in time the code "
+      "brakes fully, for 1 <= lo <= hi <= 1e9, 1 <= room <= 3e15",
+      [](unsigned t) { return best_fit_contract(t, true); });
   add(out, "axis.narrowing",
       "QF_BV, all bit patterns: x in [0, 2^31) -> x = zext(low 32 bits of x); for every uint32 y < 2^31 the "
       "int64 x/1e6 and x%1e6 of x = zext(y) equal the 32-bit unsigned ones; x * d for d = 1, -1, 0 equals "
@@ -618,14 +668,8 @@ void add_axis_obligations(ObligationList& out) {
           Encoder& e = p.enc;
           const z3::expr sf = p.s_fine();
           const z3::expr a = e.W(p.cfg.accel);
-          // (goal - pos) * dir in steps, dir in {-1, 1} (state_valid): linear in the Int twin.
-          auto ahead_of = [&](const SymState& s, const z3::expr& goal64) {
-            return z3::ite(s.dir == 1, goal64 - e.W(s.pos), e.W(s.pos) - goal64);
-          };
-          // ((goal - pos) * dir) * kDist - frac: the fine distance to the goal.
-          auto room_to = [&](const SymState& s, const z3::expr& goal64) {
-            return ahead_of(s, goal64) * e.L64(kDist) - e.W(s.frac);
-          };
+          auto ahead_of = [&](const SymState& s, const z3::expr& goal64) { return steps_ahead(e, s, goal64); };
+          auto room_to = [&](const SymState& s, const z3::expr& goal64) { return fine_room(e, s, goal64); };
           auto inv = [&](const SymState& s) {
             const z3::expr pos_mode = is_mode(e, s.mode, ax::Mode::Position);
             const z3::expr moving = !is_phase(e, s.phase, ax::Phase::Stop);
@@ -658,6 +702,37 @@ void add_axis_obligations(ObligationList& out) {
           const z3::expr base =
               z3::implies(is_phase(e, s.phase, ax::Phase::Stop) && is_mode(e, s.mode, ax::Mode::Idle), inv(s));
           return std::pair{inv(s) && inputs, goal && base};
+        });
+      });
+  add(out, "axis.position.overrun",
+      "QF_UFLIA (Int twin of the step encoding) inductive invariant (1-induction until the carriage stops) with ghosts "
+      "T (fine travel since the retarget) and Phi(v) = v > s_fine ? DD(v) + s_fine : 0. U: Position & moving & "
+      "(target ahead -> v > s_fine & DD(v) >= room), i.e. the target is behind, at the carriage, or closer than the "
+      "stopping distance. Claim: U & T + Phi(v) <= Phi0 is kept until the stop, so the carriage brakes at full "
+      "deceleration and travels at most DD(v_r) + s_fine past the retarget point before it stops (and then starts "
+      "back from rest: axis.position.no_overshoot); fixed config, no command, blocked = 0, endstops and link any",
+      [](unsigned t) {
+        return prove_step("axis.position.overrun", t, 200000, [](StepProblem& p) {
+          Encoder& e = p.enc;
+          const z3::expr sf = p.s_fine();
+          const z3::expr a = e.W(p.cfg.accel);
+          auto dd = [&](const SymState& s) { return e.dd(e.W(s.v), sf, a, p.c.bool_val(false)); };
+          auto phi = [&](const SymState& s) { return z3::ite(e.W(s.v) > sf, dd(s) + sf, e.L64(0)); };
+          auto unreachable = [&](const SymState& s) {
+            const z3::expr ahead = steps_ahead(e, s, e.W(s.target)) >= e.L64(1);
+            return is_mode(e, s.mode, ax::Mode::Position) && !is_phase(e, s.phase, ax::Phase::Stop) &&
+                   z3::implies(ahead, e.W(s.v) > sf && dd(s) >= fine_room(e, s, e.W(s.target)));
+          };
+          const z3::expr T = e.var("T", 64), phi0 = e.var("Phi0", 64);
+          auto inv = [&](const SymState& s, const z3::expr& tt) {
+            return unreachable(s) && tt >= e.L64(0) && tt <= phi0 && tt + phi(s) <= phi0;
+          };
+          const z3::expr hyp = is_kind(e, p.in.kind, ax::CmdKind::None) && p.in.blocked == 0 && phi0 >= e.L64(0) &&
+                               phi0 <= e.L64(2'000'000'000'000'000'000LL) && inv(p.s0, T);
+          const SymState& n = p.r.state;
+          const z3::expr T2 = T + e.W(p.r.out.step_speed);
+          const z3::expr goal = (is_phase(e, n.phase, ax::Phase::Stop) && T2 <= phi0) || inv(n, T2);
+          return std::pair{hyp, goal};
         });
       });
   add(out, "axis.watchdog.timeout",
