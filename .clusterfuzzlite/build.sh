@@ -35,6 +35,8 @@ for n in "${names[@]}"; do targets+=("fuzz_$n"); done
 cmake --build "$work" --parallel "${AP_JOBS:-2}" --target "${targets[@]}"
 while IFS=$'\t' read -r name group bin _replay; do
   cp "$bin" "$OUT/$name"
+  # libFuzzer options (OSS-Fuzz's <target>.options, [libfuzzer] key = value), e.g. max_len.
+  if [[ -f $root/fuzz/$group/$name.options ]]; then cp "$root/fuzz/$group/$name.options" "$OUT/$name.options"; fi
   for d in "$root/fuzz/dict/$name.dict" "$root/fuzz/dict/$group.dict"; do
     if [[ -f $d ]]; then cp "$d" "$OUT/$name.dict"; break; fi
   done

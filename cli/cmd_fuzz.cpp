@@ -182,7 +182,31 @@ FuzzStats fuzz_one(const FuzzTarget& t, const FuzzOptions& o) {
     }
   }
 
-  std::string cmd = "cd " + quote(work.string()) + " && " + kSanitizerEnv + quote(t.binary) +
+  // fuzz/<group>/<target>.options: OSS-Fuzz's format ([libfuzzer] then key = value lines),
+  // passed as -key=value; ClusterFuzzLite reads the same file (.clusterfuzzlite/build.sh).
+  std::string extra;
+  {
+    std::ifstream opt(src / "fuzz" / t.group / (t.name + ".options"));
+    std::string line;
+    bool in_libfuzzer = false;
+    while (std::getline(opt, line)) {
+      line.erase(0, line.find_first_not_of(" \t"));
+      if (line.empty() || line[0] == '#') continue;
+      if (line[0] == '[') {
+        in_libfuzzer = line.rfind("[libfuzzer]", 0) == 0;
+        continue;
+      }
+      const auto eq = line.find('=');
+      if (!in_libfuzzer || eq == std::string::npos) continue;
+      auto trim = [](std::string v) {
+        v.erase(0, v.find_first_not_of(" \t"));
+        v.erase(v.find_last_not_of(" \t\r") + 1);
+        return v;
+      };
+      extra += " -" + trim(line.substr(0, eq)) + "=" + quote(trim(line.substr(eq + 1)));
+    }
+  }
+  std::string cmd = "cd " + quote(work.string()) + " && " + kSanitizerEnv + quote(t.binary) + extra +
                     " -fork=" + std::to_string(std::max(1, o.jobs)) + " -max_total_time=" + std::to_string(o.seconds) +
                     " -timeout=10 -rss_limit_mb=2048 -ignore_crashes=1 -print_final_stats=1 -artifact_prefix=" +
                     quote(artifacts.string() + "/");
