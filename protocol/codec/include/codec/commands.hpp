@@ -50,7 +50,9 @@ struct CommandInfo {
   Range range;               // allowed data; DummyData commands allow only 0
 };
 
-inline constexpr std::array kCommands = {
+// In flash on the Cortex-M4 (arm-none-eabi-gcc 12 puts an `inline constexpr` table with
+// pointers into .data otherwise).
+[[gnu::section(".rodata.ap.codec.commands")]] inline constexpr std::array kCommands = {
     CommandInfo{CommandId::Nop, "nop", Scope::Axis, "DummyData (keep-alive)", "-", {0, 0}},
     CommandInfo{CommandId::Stop, "stop", Scope::Axis, "DummyData; ramped stop with deceleration", "-", {0, 0}},
     CommandInfo{CommandId::Jog, "jog", Scope::Axis, "direction x speed level: +-1 slow, +-2 fast, 0 released", "level", {-2, 2}},

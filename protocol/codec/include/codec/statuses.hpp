@@ -43,7 +43,8 @@ struct StatusInfo {
 
 inline constexpr Range kPositionRange{-99999, 999999};
 
-inline constexpr std::array kStatuses = {
+// In flash on the Cortex-M4 (see kCommands in commands.hpp).
+[[gnu::section(".rodata.ap.codec.statuses")]] inline constexpr std::array kStatuses = {
     StatusInfo{EchoStatus::Idle, "idle", "standing, no target", "position", "um", kPositionRange},
     StatusInfo{EchoStatus::Accelerating, "accel", "moving, accelerating", "position", "um", kPositionRange},
     StatusInfo{EchoStatus::ConstantSpeed, "const", "moving at constant speed", "position", "um", kPositionRange},

@@ -37,7 +37,8 @@ struct SubscriberInfo {
   Range range;            // data range in the echo
 };
 
-inline constexpr std::array kSubscribers = {
+// In flash on the Cortex-M4 (see kCommands in commands.hpp).
+[[gnu::section(".rodata.ap.codec.subscribers")]] inline constexpr std::array kSubscribers = {
     SubscriberInfo{SubscriberId::None, "none", "empty slot", "-", {0, 0}, "-", {0, 0}},
     SubscriberInfo{SubscriberId::BatteryMv, "battery", "battery voltage", "-", {0, 0}, "mV", {0, 99999}},
     SubscriberInfo{SubscriberId::ChargeMa, "charge", "charge current (negative = discharge)", "-", {0, 0}, "mA", {-99999, 99999}},

@@ -206,7 +206,9 @@ constexpr std::uint32_t mask_of(unsigned lsb, unsigned width) {
 }
 }  // namespace detail
 
-inline constexpr std::array kFields{
+// The section attribute keeps this table in flash on the Cortex-M4: arm-none-eabi-gcc 12 puts
+// an `inline constexpr` object that holds pointers into .data (RAM) otherwise. The same below.
+[[gnu::section(".rodata.ap.tmc2130.fields")]] inline constexpr std::array kFields{
 #define AP_X(reg, name, lsb, width, is_signed, lo, hi)                                     \
   FieldInfo{#name, Field::reg##_##name, Reg::reg, detail::mask_of(lsb, width), lsb, width, \
             is_signed, static_cast<std::int64_t>(lo##LL), static_cast<std::int64_t>(hi##LL)},
@@ -228,7 +230,7 @@ constexpr std::uint8_t field_count_of(Reg r) {
 }
 }  // namespace detail
 
-inline constexpr std::array kRegisters{
+[[gnu::section(".rodata.ap.tmc2130.registers")]] inline constexpr std::array kRegisters{
 #define AP_X(name, addr, access, reset)                                                     \
   RegisterInfo{#name, Reg::name, Access::access, reset, detail::first_field_of(Reg::name), \
                detail::field_count_of(Reg::name)},
