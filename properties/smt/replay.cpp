@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/axis/step_timer.hpp"
+#include "core/axis/watchdog.hpp"
 
 namespace smt_replay {
 
@@ -98,8 +99,42 @@ std::string timer_violations(unsigned f) {
 
 }  // namespace
 
+// Every (phase, class) through the real edge_for: exactly one guard holds and it is the edge's.
+std::string table_violations() {
+  std::ostringstream o;
+  for (int p = 0; p < ax::kPhaseCount; ++p) {
+    for (int c = 0; c < ax::kClassCount; ++c) {
+      const auto ph = static_cast<ax::Phase>(p);
+      const auto cl = static_cast<ax::Class>(c);
+      const ax::Edge e = ax::edge_for(ph, cl);
+      int holding = 0;
+      for (int x = 0; x < ax::kEdgeCount; ++x) holding += ax::edge_guard(static_cast<ax::Edge>(x), ph, cl) ? 1 : 0;
+      if (!ax::edge_guard(e, ph, cl) || holding != 1)
+        o << "phase " << p << " class " << c << ": edge " << ax::edge_letter(e) << " (guards holding: " << holding << ")\n";
+    }
+  }
+  return o.str();
+}
+
+// The link watchdog after a valid frame and then silence: alive exactly for the first
+// kLinkTimeoutTicks - 1 silent ticks, lost from tick kLinkTimeoutTicks on, and it stays lost.
+std::string watchdog_violations() {
+  std::ostringstream o;
+  ax::LinkWatchdog w = ax::watchdog_tick(ax::LinkWatchdog{}, true);
+  for (int t = 1; t <= 1000; ++t) {
+    w = ax::watchdog_tick(w, false);
+    if (ax::link_alive(w) != (t < ax::kLinkTimeoutTicks)) {
+      o << "tick " << t << " after the last frame: link " << (ax::link_alive(w) ? "alive" : "lost") << "\n";
+      break;
+    }
+  }
+  return o.str();
+}
+
 std::string violations(const Case& k) {
   if (k.kind == "timer") return timer_violations(k.timer_f);
+  if (k.kind == "table") return table_violations();
+  if (k.kind == "watchdog") return watchdog_violations();
   std::ostringstream o;
   const ax::Config& c = k.config;
   const bool cfg_ok = ax::config_valid(c);

@@ -42,6 +42,7 @@ std::string format_case(const ReplayCase& k) {
     o << "timer " << k.timer_f << "\n";
     return o.str();
   }
+  if (k.kind == "table" || k.kind == "watchdog") return o.str();  // the replay checks the whole function
   const auto& c = k.config;
   o << "config " << c.v_start << ' ' << c.v_slow << ' ' << c.v_fast << ' ' << c.accel << ' ' << c.soft_min << ' '
     << c.soft_max << ' ' << c.home_travel << ' ' << c.home_position << "\n";
@@ -601,8 +602,13 @@ void add_axis_obligations(ObligationList& out) {
                                                  p.r.out.edge == axis::sym_edge_for(c, p.s0.phase, p.r.out.cls));
         return decide(c, c.bool_val(true), z3::implies(z3::ule(ph, 3) && z3::ule(cl, 6), one) && step_ok, t, "QF_BV",
                       [&](const z3::model& m) {
+                        ReplayCase rc;
+                        rc.obligation = "axis.table.total_deterministic";
+                        rc.kind = "table";
                         return "phase=" + m.eval(ph, true).to_string() + " class=" + m.eval(cl, true).to_string() +
-                               " edge_for=" + m.eval(e, true).to_string() + "; " + p.render("axis.table.total_deterministic", m, 0);
+                               " edge_for=" + m.eval(e, true).to_string() +
+                               "\n    replay case (every phase x class through edge_for/edge_guard) written to " +
+                               write_case(rc);
                       });
       });
   add(out, "axis.speed.max",
@@ -750,8 +756,12 @@ void add_axis_obligations(ObligationList& out) {
         const z3::expr claim = inv(s2, n2) && (axis::sym_link_alive(c, s2) == z3::ult(n2, lim));
         const z3::expr base = inv(lim, lim);  // LinkWatchdog{} starts expired: as if 300 ticks silent
         return decide(c, inv(silent, n), claim && base, t, "QF_BV", [&](const z3::model& m) {
+          ReplayCase rc;
+          rc.obligation = "axis.watchdog.timeout";
+          rc.kind = "watchdog";
           return "silent=" + m.eval(silent, true).to_string() + " n=" + m.eval(n, true).to_string() +
-                 " valid=" + m.eval(valid, true).to_string();
+                 " valid=" + m.eval(valid, true).to_string() +
+                 "\n    replay case (1000 silent ticks after a frame through watchdog_tick) written to " + write_case(rc);
         });
       });
   add(out, "axis.watchdog.stop_begins",

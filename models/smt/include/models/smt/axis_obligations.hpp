@@ -5,7 +5,8 @@
 //
 // Case file format (text, one item per line, '#' starts a comment):
 //   obligation <name>
-//   kind motion | timer
+//   kind motion | timer | table | watchdog   (table, watchdog: no more lines; the replay checks
+//                                              the whole C++ function)
 //   config <v_start> <v_slow> <v_fast> <accel> <soft_min> <soft_max> <home_travel> <home_position>
 //   state <phase> <mode> <dir> <jog_dir> <level> <latch_min> <latch_max> <homed> <pos> <target> <v> <frac>
 //   input <kind> <dir> <level> <value> <endstop_min> <endstop_max> <blocked> <link_alive>   (one per tick)
