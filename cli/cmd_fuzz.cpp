@@ -310,7 +310,14 @@ FuzzStats fuzz_one(const FuzzTarget& t, const FuzzOptions& o) {
     std::string sha = run_capture("sha1sum " + quote(keep.string()) + " | cut -c1-16", &hs);
     sha.erase(std::remove(sha.begin(), sha.end(), '\n'), sha.end());
     const std::string base = sig.kind + "-" + sha;
-    fs::copy_file(keep, regressions / base, fs::copy_options::overwrite_existing);
+    std::error_code copy_ec;
+    fs::create_directories(regressions, copy_ec);
+    fs::copy_file(keep, regressions / base, fs::copy_options::overwrite_existing, copy_ec);
+    if (copy_ec) {
+      std::printf("  [%s] could not write the reproducer %s: %s (kept in %s)\n", t.name.c_str(),
+                  (regressions / base).string().c_str(), copy_ec.message().c_str(), keep.string().c_str());
+      continue;
+    }
     std::ofstream summary(regressions / (base + ".txt"));
     summary << today() << " " << sig.kind << ", " << fs::file_size(keep) << " bytes (minimised from "
             << fs::file_size(file) << "): " << sig.summary << (sig.frames.empty() ? "" : " at " + sig.frames)

@@ -124,7 +124,8 @@ struct Harness {
     const std::int32_t sf = cfg.v_start * kSpeedScale;
     if (!state_valid(s)) violation("state out of its invariant ranges", ticks);
     if (o.steps < 0 || o.steps > kSpeedMax / kTicksPerSecond) violation("steps per tick out of range", ticks);
-    if (s.v > std::max(cfg.v_fast, cfg.v_start) * kSpeedScale) violation("speed above the fast speed", ticks);
+    // (A raw start state may already be faster: then it may only brake.)
+    if (s.v > p.v && s.v > std::max(cfg.v_fast, cfg.v_start) * kSpeedScale) violation("accelerated above the fast speed", ticks);
     if (s.dir != p.dir && p.v > sf) violation("DIR flipped above the start speed", ticks);
     if (o.steps > 0 && o.dir != s.dir) violation("steps emitted against the DIR state", ticks);
     if (in.endstop_min != 0) latch_min = true;
@@ -152,9 +153,12 @@ struct Harness {
       violation("soft travel limit crossed", ticks);
     }
     if (in.link_alive == 0 && p.mode != Mode::Jog && s.mode == Mode::Jog) violation("jog started with the link dead", ticks);
+    // A new command, a block (a braking stop may pass the target) or a homing re-reference
+    // ends the move that was being tracked.
+    if (cmd.kind != CmdKind::None || in.blocked != 0 || homing_reset) tracking = false;
     const bool new_move = s.mode == Mode::Position && (p.mode != Mode::Position || p.target != s.target);
     if (new_move) {
-      tracking = p.v == 0;
+      tracking = p.v == 0 && in.blocked == 0;
       target = s.target;
       side = p.pos > s.target ? 1 : (p.pos < s.target ? -1 : 0);
     }
@@ -208,6 +212,20 @@ struct Harness {
     const StartPosition sp = start_position(&e, {a, static_cast<std::uint8_t>(b & 1)}, rev);
     if (sp.error == Error::None && !state_valid(initial_state(sp))) violation("start position gives an invalid state", 0);
     if (const auto ts = step_timer(static_cast<std::uint32_t>(a))) (void)step_ccr(*ts);
+    // The transition table (Tab. 7-3 + gaps): exactly one edge per (phase, class), and the
+    // names used by reports. Out-of-range enum values must be answered, not trusted.
+    const auto ph = static_cast<Phase>(static_cast<std::uint8_t>(b) % (kPhaseCount + 1));
+    const auto cl = static_cast<Class>(static_cast<std::uint8_t>(b >> 8) % (kClassCount + 1));
+    const Edge edge = edge_for(ph, cl);
+    if (static_cast<int>(ph) < kPhaseCount && static_cast<int>(cl) < kClassCount) {
+      int guards = 0;
+      for (int k = 0; k < kEdgeCount; ++k) guards += edge_guard(static_cast<Edge>(k), ph, cl) ? 1 : 0;
+      if (guards != 1 || !edge_guard(edge, ph, cl)) violation("transition table not total and deterministic", 0);
+      if (static_cast<int>(edge_target(edge, ph)) >= kPhaseCount) violation("edge leads outside the phases", 0);
+    }
+    (void)edge_letter(static_cast<Edge>(static_cast<std::uint8_t>(b >> 16) % (kEdgeCount + 1)));
+    (void)phase_name(ph);
+    (void)mode_name(static_cast<Mode>(static_cast<std::uint8_t>(b >> 24) % 5));
   }
 
   void run(const std::uint8_t* data, std::size_t size) {

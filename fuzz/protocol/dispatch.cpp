@@ -12,6 +12,7 @@
 
 #include "core/frame/callback_table.hpp"
 #include "core/frame/command_link.hpp"
+#include "core/frame/echo_builder.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "crc_repair.hpp"
 
@@ -37,6 +38,18 @@ f::HandlerStatus handler(void* ctx, f::Axis axis, std::int32_t data) {
   ++c->count;
   return (data & 1) != 0 ? f::HandlerStatus::Refused : f::HandlerStatus::Done;
 }
+
+struct Absurd {
+  std::uint32_t x = 0;
+  std::uint32_t y = 0;
+  std::uint32_t sub = 0;
+  std::uint8_t status = 0;
+};
+f::AxisEcho absurd_axis(void* ctx, f::Axis a) {
+  const auto* s = static_cast<const Absurd*>(ctx);
+  return {static_cast<ap::codec::EchoStatus>(s->status), static_cast<std::int32_t>(a == f::Axis::X ? s->x : s->y)};
+}
+std::int32_t absurd_sub(void* ctx, f::SubscriberSlot) { return static_cast<std::int32_t>(static_cast<const Absurd*>(ctx)->sub); }
 
 f::AxisEcho axis_state(void*, f::Axis a) { return {ap::codec::EchoStatus::Idle, a == f::Axis::X ? 1 : 2}; }
 std::int32_t sub_value(void*, f::SubscriberSlot s) { return static_cast<std::int32_t>(s.arg) * 1000003; }
@@ -103,6 +116,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto r = table.dispatch(raw, &calls);
     require(r.rejection.ok() ? calls.count == 2 : calls.count == 0);
     require(!r.rejection.ok() || f::validate(raw).ok());
+  }
+  // Echo builder with absurd sources (any status byte, any value, or no source at all): the
+  // echo always formats, which Board::send_echoes relies on; so does a rejection echo for
+  // whatever rejection_from_code makes of any code.
+  if (size >= 17) {
+    Absurd a;
+    std::memcpy(&a.x, data + 1, sizeof a.x);
+    std::memcpy(&a.y, data + 5, sizeof a.y);
+    std::memcpy(&a.sub, data + 9, sizeof a.sub);
+    a.status = data[13];
+    f::SubscriberSlots slots{};
+    for (std::size_t k = 0; k < slots.size(); ++k) {
+      slots[k] = {static_cast<ap::codec::SubscriberId>(data[14 + k % 3]), data[15 - k % 2]};
+    }
+    const bool none = (data[16] & 1U) != 0;
+    const f::EchoSource src{&a, none ? nullptr : &absurd_axis, (data[16] & 2U) != 0 ? nullptr : &absurd_sub};
+    std::array<std::uint8_t, ap::codec::kEchoLength> out{};
+    require(f::format_echo(f::build_echo(static_cast<std::uint16_t>(a.x % 1000U), slots, src), out).ok());
+    const f::Rejection back = f::rejection_from_code(static_cast<std::int32_t>(a.sub));
+    require(f::format_echo(f::build_rejection_echo(static_cast<std::uint16_t>(a.y % 1000U), back), out).ok());
   }
   return 0;
 }
