@@ -200,8 +200,15 @@ struct Rig {
       return;
     }
     TrackedMove& m = *x.move;
-    const int side = n.pos > m.target ? 1 : (n.pos < m.target ? -1 : 0);
     const bool arrived = r.out.edge == Edge::E && n.pos == m.target && n.mode == Mode::Idle;
+    if (!arrived && n.mode != Mode::Position) {
+      // A stop, e-stop, block, endstop or link loss ended the move this tick: the axis brakes
+      // as Idle and may roll past the old target, which is no longer a goal (found by this
+      // test: a Stop one step before the target at just above the start speed).
+      x.move.reset();
+      return;
+    }
+    const int side = n.pos > m.target ? 1 : (n.pos < m.target ? -1 : 0);
     if (side != 0) {
       if (m.last_side != 0 && side != m.last_side) {
         ++m.passes;
