@@ -58,19 +58,6 @@ SaveResult ParameterStore::save(const ParameterSet& next) noexcept {
   encode_record(next, seq, image);
   RecordBytes readback{};
 
-  // First spoil the target copy's CRC field. FRAM writes are sequential, so a torn write leaves
-  // our prefix in front of the old record's tail, and the sequence and the CRC lie in that tail:
-  // when the prefix matches the old bytes, the OLD record is intact again -- for a failed save
-  // whose own spoiling write was lost, a set the user was told was not saved (store_ops fuzz
-  // finding, fuzz/regressions/store_ops/double-fault-resurrected-record). ~old CRC can match no
-  // mix of our prefix and that tail except by a 2^-32 accident. Best effort: a dead bus fails
-  // below.
-  if (fram_.read(kCopyBase[target], readback)) {
-    std::array<std::uint8_t, 4> spoiled{};
-    put_le(spoiled, 0, 4, ~get_le(readback, kCrcOffset, 4));
-    (void)fram_.write(static_cast<std::uint16_t>(kCopyBase[target] + kCrcOffset), spoiled);
-  }
-
   for (std::uint8_t attempt = 1; attempt <= kMaxSaveAttempts; ++attempt) {
     const bool written = fram_.write(kCopyBase[target], image);
     const bool read = written && fram_.read(kCopyBase[target], readback);
