@@ -26,6 +26,7 @@
 #include "core/axis/position.hpp"
 #include "core/axis/step_timer.hpp"
 #include "core/axis/units.hpp"
+#include "../script_reader.hpp"
 
 namespace {
 
@@ -38,16 +39,7 @@ constexpr std::int64_t kMaxTicks = 20'000;
   std::abort();
 }
 
-struct Reader {
-  const std::uint8_t* p;
-  std::size_t n;
-  std::size_t i = 0;
-  bool more() const { return i < n; }
-  std::uint8_t u8() { return i < n ? p[i++] : 0; }
-  std::uint16_t u16() { return static_cast<std::uint16_t>(u8() | (u8() << 8)); }
-  std::uint32_t u32() { return static_cast<std::uint32_t>(u16()) | (static_cast<std::uint32_t>(u16()) << 16); }
-  std::int32_t i32() { return static_cast<std::int32_t>(u32()); }
-};
+using ap::fuzz::Reader;
 
 Config scaled_config(Reader& r) {
   Config c;

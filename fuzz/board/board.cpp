@@ -36,6 +36,7 @@
 #include "core/axis/watchdog.hpp"
 #include "core/frame/fields.hpp"
 #include "core/tmc2130/fields.hpp"
+#include "../script_reader.hpp"
 
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size)
     __attribute__((weak));
@@ -54,14 +55,7 @@ constexpr std::int64_t kMaxTicks = 12'000;
   std::abort();
 }
 
-struct Reader {
-  const std::uint8_t* p;
-  std::size_t n;
-  std::size_t i = 0;
-  bool more() const { return i < n; }
-  std::uint8_t u8() { return i < n ? p[i++] : 0; }
-  std::uint16_t u16() { return static_cast<std::uint16_t>(u8() | (u8() << 8)); }
-};
+using ap::fuzz::Reader;
 
 std::int32_t data_in(const codec::Range& r, std::uint16_t raw) {
   const std::int64_t span = static_cast<std::int64_t>(r.max) - r.min + 1;

@@ -27,6 +27,7 @@
 #include "core/storage/record.hpp"
 #include "core/storage/store.hpp"
 #include "models/fram/mb85rs256b.hpp"
+#include "../script_reader.hpp"
 
 using namespace ap::storage;
 using ap::model::Mb85rs256b;
@@ -38,15 +39,7 @@ namespace {
   std::abort();
 }
 
-struct Reader {
-  const std::uint8_t* p;
-  std::size_t n;
-  std::size_t i = 0;
-  bool more() const { return i < n; }
-  std::uint8_t u8() { return i < n ? p[i++] : 0; }
-  std::uint16_t u16() { return static_cast<std::uint16_t>(u8() | (u8() << 8)); }
-  std::int32_t i32() { return static_cast<std::int32_t>(static_cast<std::uint32_t>(u16()) | (static_cast<std::uint32_t>(u16()) << 16)); }
-};
+using ap::fuzz::Reader;
 
 struct Harness {
   std::unique_ptr<Mb85rs256b> chip = std::make_unique<Mb85rs256b>();
