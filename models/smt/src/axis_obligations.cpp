@@ -674,16 +674,14 @@ void add_axis_obligations(ObligationList& out) {
           Encoder& e = p.enc;
           const z3::expr sf = p.s_fine();
           const z3::expr a = e.W(p.cfg.accel);
-          auto ahead_of = [&](const SymState& s, const z3::expr& goal64) { return steps_ahead(e, s, goal64); };
-          auto room_to = [&](const SymState& s, const z3::expr& goal64) { return fine_room(e, s, goal64); };
           auto inv = [&](const SymState& s) {
             const z3::expr pos_mode = is_mode(e, s.mode, ax::Mode::Position);
             const z3::expr moving = !is_phase(e, s.phase, ax::Phase::Stop);
             const z3::expr in_lim = s.homed == 0 || (s.target >= p.cfg.soft_min && s.target <= p.cfg.soft_max);
             const z3::expr dd = e.dd(e.W(s.v), sf, a, p.c.bool_val(false));
             return z3::implies(pos_mode, in_lim) &&
-                   z3::implies(pos_mode && moving, ahead_of(s, e.W(s.target)) >= e.L64(1) &&
-                                                       z3::implies(e.W(s.v) > sf, dd < room_to(s, e.W(s.target))));
+                   z3::implies(pos_mode && moving, steps_ahead(e, s, e.W(s.target)) >= e.L64(1) &&
+                                                       z3::implies(e.W(s.v) > sf, dd < fine_room(e, s, e.W(s.target))));
           };
           const SymState& s = p.s0;
           const SymInput& in = p.in;
@@ -691,7 +689,7 @@ void add_axis_obligations(ObligationList& out) {
           const z3::expr d_new = z3::ite(t64 > e.W(s.pos), e.L8(1), z3::ite(t64 < e.W(s.pos), e.L8(-1), e.L8(0)));
           const z3::expr dd_now = e.dd(e.W(s.v), sf, a, p.c.bool_val(false));
           const z3::expr reachable = is_phase(e, s.phase, ax::Phase::Stop) ||
-                                     (d_new == s.dir && (e.W(s.v) <= sf || dd_now < room_to(s, t64)));
+                                     (d_new == s.dir && (e.W(s.v) <= sf || dd_now < fine_room(e, s, t64)));
           const z3::expr move = is_kind(e, in.kind, ax::CmdKind::MoveAbs) || is_kind(e, in.kind, ax::CmdKind::MoveRel);
           const z3::expr inputs = in.blocked == 0 && (is_kind(e, in.kind, ax::CmdKind::None) || (move && reachable));
           const SymState& n = p.r.state;
