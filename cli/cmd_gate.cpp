@@ -26,6 +26,8 @@
 //                llvm-cov line + branch of core/ and protocol/, FAIL below 90 % branch. Falls
 //                back to the cov preset (a build of its own) when build/asan has no coverage.
 //   m4           ci/m4-build: Cortex-M4 static libraries, size table, symbol check
+//   bench        `axisproof bench --filter` one benchmark: the README's bench command needs the
+//                release preset, which `axisproof test` does not build, so the gate checks it
 // Then out/gate/report.md + report.html, --junit FILE, and the release artifact under
 // out/release/ (M4 libraries, size table, manifest.json / MANIFEST.md).
 #include "cli.hpp"
@@ -122,7 +124,13 @@ int run_logged(const std::string& command, const std::string& log, const std::st
   return 128 + (WIFSIGNALED(raw) ? WTERMSIG(raw) : 0);
 }
 
-std::string log_path(const char* id) { return source_dir() + "/out/gate/logs/" + id + ".log"; }
+// Where the reports (OUT/gate) and the release artifact (OUT/release) go: out/ of the source
+// tree unless --out names another folder (the README smoke test runs the gate into a temporary one).
+std::string g_out;
+std::string gate_dir() { return g_out + "/gate"; }
+std::string release_dir() { return g_out + "/release"; }
+
+std::string log_path(const char* id) { return gate_dir() + "/logs/" + id + ".log"; }
 
 std::string self_exe() {
   std::error_code ec;
@@ -237,7 +245,7 @@ long long stat_of(const std::string& text, const std::string& name) {
 void fuzz_short_run(const FuzzTarget& t, gate::Run& run, const std::string& log, int* findings, bool* ok,
                     long long* min_rate, std::string* slowest) {
   const std::string src = source_dir();
-  const std::string dir = src + "/out/gate/fuzz/" + t.name;
+  const std::string dir = gate_dir() + "/fuzz/" + t.name;
   std::error_code ec;
   fs::remove_all(dir, ec);
   fs::create_directories(dir + "/corpus");
@@ -296,7 +304,7 @@ Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   std::smatch nm;
   const int replays = std::regex_search(n_out, nm, std::regex(R"(Total Tests: (\d+))")) ? std::stoi(nm[1].str()) : 0;
   st = run_logged("ctest --preset asan -L fuzz" + not_cfl + " --no-tests=error --output-junit " +
-                      quote(source_dir() + "/out/gate/junit-fuzz-replay.xml"),
+                      quote(gate_dir() + "/junit-fuzz-replay.xml"),
                   log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
   if (st != 0) return {Result::Fail, "replay of corpora / regressions fails (" + std::to_string(replays) + " fuzz tests)"};
   std::vector<FuzzTarget> runnable;
@@ -322,7 +330,7 @@ Outcome fuzz_stage(gate::Run& run, const std::string& log) {
 Outcome e2e_stage(const std::string& log) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
   if (count_tests("asan", "e2e") == 0) return {Result::NotRun, "no end-to-end tests (ctest label e2e) yet"};
-  return ctest_stage("e2e", source_dir() + "/out/gate/junit-e2e.xml", log);
+  return ctest_stage("e2e", gate_dir() + "/junit-e2e.xml", log);
 }
 
 Outcome mutation_stage(gate::Run& run, const std::string& log) {
@@ -406,9 +414,9 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
 }
 
 Outcome m4_stage(gate::Run& run, const std::string& log) {
-  const int st = run_logged("ci/m4-build --out " + quote(source_dir() + "/out/release"), log, R"(^total|^flash|m4-build:)");
-  run.details.m4_size_md = slurp(source_dir() + "/out/release/m4-size.md");
-  const std::string txt = slurp(source_dir() + "/out/release/m4-size.txt");
+  const int st = run_logged("ci/m4-build --out " + quote(release_dir()), log, R"(^total|^flash|m4-build:)");
+  run.details.m4_size_md = slurp(release_dir() + "/m4-size.md");
+  const std::string txt = slurp(release_dir() + "/m4-size.txt");
   std::smatch m;
   std::string key = st == 0 ? "built" : "cross build or check failed (see log)";
   if (std::regex_search(txt, m, std::regex(R"(flash (\d+) B of \d+ B \(([\d.]+)%\), RAM (\d+) B of \d+ B \(([\d.]+)%\))"))) {
@@ -417,6 +425,19 @@ Outcome m4_stage(gate::Run& run, const std::string& log) {
   }
   const std::string text = slurp(log);
   if (text.find("no core libraries are defined yet") != std::string::npos) return {Result::NotRun, "no core libraries yet"};
+  return {st == 0 ? Result::Pass : Result::Fail, key};
+}
+
+// The README's `axisproof bench` end to end (release benchmarks build, one benchmark runs): a
+// smoke of the command, not a performance check, so the rate is reported and never judged.
+Outcome bench_stage(const std::string& log) {
+  const char* kBenchmark = "BM_ProtocolParseCommand";
+  const int st = run_logged(quote(self_exe()) + " bench --filter '^" + kBenchmark + "$'", log, std::string("^") + kBenchmark);
+  std::smatch m;
+  const std::string text = slurp(log);
+  std::string key = st == 0 ? "ran" : "bench failed (see log)";
+  if (std::regex_search(text, m, std::regex(std::string(kBenchmark) + R"(\s+\S+ ns\s+\S+ ns\s+\d+\s+(\S+/s))")))
+    key = std::string(kBenchmark) + " " + m[1].str() + " (CPU time, release build)";
   return {st == 0 ? Result::Pass : Result::Fail, key};
 }
 
@@ -433,17 +454,20 @@ void add_gate(CLI::App& app) {
   auto* sub = app.add_subcommand("gate", "Release gate on the bundled firmware core: every stage, a verdict table, exit 0 only on PASS");
   static std::string junit;
   static std::vector<std::string> skip;
+  static std::string out_root;
   sub->add_option("--junit", junit, "Also write the verdict as JUnit XML to FILE");
   sub->add_option("--skip", skip, "Do not run STAGE (it is then NOT RUN, so the verdict is FAIL)")
-      ->check(CLI::IsMember({"build-dev", "build-asan", "tests", "proofs", "fuzz", "e2e", "mutation", "coverage", "m4"}));
+      ->check(CLI::IsMember({"build-dev", "build-asan", "tests", "proofs", "fuzz", "e2e", "mutation", "coverage", "m4", "bench"}));
+  sub->add_option("--out", out_root, "Write the reports to DIR/gate and the release artifact to DIR/release (default out/)");
   sub->add_option("--fuzz-time", fuzz_seconds, "Seconds per fuzz target in the fuzz smoke stage (default 10)")
       ->check(CLI::PositiveNumber);
   sub->final_callback([] {
     const std::string src = source_dir();
     std::error_code ec;
-    fs::remove_all(src + "/out/gate", ec);
-    fs::remove_all(src + "/out/release", ec);
-    fs::create_directories(src + "/out/gate/logs");
+    g_out = out_root.empty() ? src + "/out" : fs::absolute(out_root).string();
+    fs::remove_all(gate_dir(), ec);
+    fs::remove_all(release_dir(), ec);
+    fs::create_directories(gate_dir() + "/logs");
     gate::Run run;
     run.version = AP_VERSION;
     run.date = now_utc();
@@ -460,7 +484,7 @@ void add_gate(CLI::App& app) {
          [](gate::Run&, std::string& l) {
            std::error_code rm_ec;
            fs::remove_all(profile_dir(), rm_ec);  // the coverage stage reads what this and the later test stages write
-           return ctest_stage("unit|property|proof", source_dir() + "/out/gate/junit-tests.xml", l);
+           return ctest_stage("unit|property|proof", gate_dir() + "/junit-tests.xml", l);
          }},
         {"proofs", "proofs", [](gate::Run& r, std::string& l) { return proofs_stage(r, l); }},
         {"fuzz", "fuzz smoke", [](gate::Run& r, std::string& l) { return fuzz_stage(r, l); }},
@@ -468,6 +492,7 @@ void add_gate(CLI::App& app) {
         {"mutation", "mutation suite", [](gate::Run& r, std::string& l) { return mutation_stage(r, l); }},
         {"coverage", "coverage", [](gate::Run& r, std::string& l) { return coverage_stage(r, l); }},
         {"m4", "cortex-m4 build", [](gate::Run& r, std::string& l) { return m4_stage(r, l); }},
+        {"bench", "benchmarks (release)", [](gate::Run&, std::string& l) { return bench_stage(l); }},
     };
     const auto start = std::chrono::steady_clock::now();
     run.pass = true;
@@ -501,9 +526,11 @@ void add_gate(CLI::App& app) {
       std::sort(run.details.plots.begin(), run.details.plots.end());
     }
     gate::print_table(run);
-    gate::write_reports(run, src + "/out/gate");
-    gate::write_manifest(run, src + "/out/release");
-    std::printf("report: out/gate/report.md, out/gate/report.html; release artifact: out/release/\n");
+    gate::write_reports(run, gate_dir());
+    gate::write_manifest(run, release_dir());
+    const std::string shown = out_root.empty() ? "out" : g_out;
+    std::printf("report: %s/gate/report.md, %s/gate/report.html; release artifact: %s/release/\n", shown.c_str(), shown.c_str(),
+                shown.c_str());
     if (!junit.empty()) {
       if (gate::write_junit(run, junit)) std::printf("JUnit XML: %s\n", junit.c_str());
       else std::fprintf(stderr, "axisproof gate: cannot write %s\n", junit.c_str());

@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# A cheap smoke of each command README.md shows, run as a user runs it (./axisproof from the
+# source root, the ci/ scripts), so a command that no longer builds or starts fails `axisproof
+# test`. One ctest per command (readme.<key>); `readme.every_command_has_a_smoke` fails when the
+# README shows a command that has no case here. `./axisproof bench` needs the release preset,
+# which the tests do not build: the gate's "benchmarks (release)" stage runs it instead.
+# Usage: readme-smoke.sh ROOT BUILD_DIR KEY
+set -uo pipefail
+root=$1 build=$2 key=$3
+cd "$root" || exit 2
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/readme-smoke.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+preset=$(basename "$build")   # build/<preset> (CMakePresets.json binaryDir)
+
+fail() { echo "FAIL readme.$key: $*"; exit 1; }
+# expect RC OUTPUT_REGEX COMMAND...: run, show the tail, check the exit status and the output.
+expect() {
+  local want=$1 re=$2 rc
+  shift 2
+  echo "\$ $*"
+  out=$("$@" 2>&1)
+  rc=$?
+  printf '%s\n' "$out" | tail -n 12
+  [[ $rc -eq $want ]] || fail "'$*' exited $rc, want $want"
+  [[ -z $re ]] || grep -qE -- "$re" <<<"$out" || fail "'$*' printed nothing matching /$re/"
+}
+
+# The commands README.md shows: `./axisproof SUB` and `ci/SCRIPT`, one key each.
+readme_keys() {
+  { grep -oE '\./axisproof [a-z]+' README.md | awk '{print "axisproof-" $2}'
+    grep -oE '(^|[^a-z./-])ci/[a-z0-9][a-z0-9-]+' README.md | sed -E 's|.*ci/||' |
+      while read -r s; do [[ -f ci/$s && -x ci/$s ]] && echo "ci-$s"; done; } | sort -u
+}
+
+case $key in
+  list) readme_keys ;;
+  every_command_has_a_smoke)
+    known=" axisproof-gate axisproof-test axisproof-prove axisproof-fuzz axisproof-sim axisproof-frame axisproof-regs
+            axisproof-bench ci-mutate ci-nightly-fuzz ci-coverage ci-m4-build ci-fresh-machine "
+    known=" $(echo $known) "
+    n=0
+    for k in $(readme_keys); do
+      n=$((n + 1))
+      [[ $known == *" $k "* ]] || fail "README.md shows '$k' but properties/layout/readme-smoke.sh has no smoke for it"
+    done
+    ((n >= 10)) || fail "found only $n commands in README.md: the extraction is broken"
+    echo "ok: $n README commands, each with a smoke" ;;
+  axisproof-gate)
+    # Every stage skipped: the gate must still parse, print the table, write the reports and
+    # the release manifest, and fail (a skipped stage is NOT RUN, and NOT RUN fails the gate).
+    stages=(build-dev build-asan tests proofs fuzz e2e mutation coverage m4 bench)
+    args=()
+    for s in "${stages[@]}"; do args+=(--skip "$s"); done
+    expect 1 'NOT RUN' ./axisproof gate --out "$tmp/out" --junit "$tmp/junit.xml" "${args[@]}"
+    [[ $(grep -c 'NOT RUN' <<<"$out") -ge ${#stages[@]} ]] || fail "the verdict table lists fewer than ${#stages[@]} NOT RUN stages"
+    for f in gate/report.md gate/report.html release/manifest.json; do [[ -s $tmp/out/$f ]] || fail "gate wrote no $f"; done
+    grep -q '<testsuite' "$tmp/junit.xml" || fail "gate wrote no JUnit XML" ;;
+  axisproof-test)
+    expect 0 '100% tests passed' ./axisproof test --preset "$preset" -R '^cli\.unknown_subcommand_exits_2$' ;;
+  axisproof-prove)
+    expect 0 '1 obligations: 1 proved' ./axisproof prove --only axis.dd.monotone ;;
+  axisproof-fuzz)
+    [[ -x $build/fuzz/protocol/fuzz_frame_parser || -n $(find "$build/fuzz" -name fuzz_frame_parser -type f 2>/dev/null) ]] ||
+      fail "$build has no libFuzzer binaries (this smoke is registered only where AP_FUZZ_BINARIES is on)"
+    expect 0 'frame_parser' ./axisproof fuzz --target frame_parser --time 2 --jobs 1 --no-save --build-dir "$build" ;;
+  axisproof-sim)
+    expect 0 '' ./axisproof sim run scenarios/absolute_20mm --out "$tmp/sim"
+    [[ -s $tmp/sim/absolute_20mm/trace.csv ]] || fail "sim run wrote no trace.csv"
+    # `sim board` in another process, the PC joining it (docs/sim.md).
+    domain=$((100 + RANDOM % 100))
+    ./axisproof sim board --domain "$domain" --boards 1 --idle-timeout 60 >"$tmp/board.log" 2>&1 &
+    board=$!
+    expect 0 '' ./axisproof sim run scenarios/absolute_20mm --domain "$domain" --join --out "$tmp/join"
+    wait "$board" || fail "sim board exited $? ($(tail -3 "$tmp/board.log"))" ;;
+  axisproof-frame)
+    # The frames docs/protocol.md prints for these commands.
+    expect 0 '' ./axisproof frame encode seq=1 x=stop y=goto:20000
+    frame=$(tail -n 1 <<<"$out")
+    grep -qF -- "$frame" docs/protocol.md || fail "encode printed '$frame', which docs/protocol.md does not show"
+    expect 0 'goto' ./axisproof frame decode "$frame" ;;
+  axisproof-regs)
+    expect 0 'IHOLD_IRUN' ./axisproof regs
+    expect 0 '^register,address,access,field,mask,shift,width,signed' ./axisproof regs --format csv
+    expect 0 'IHOLD_IRUN' ./axisproof regs decode 90 00 07 0C 03 ;;
+  axisproof-bench)
+    echo "./axisproof bench needs the release preset: the gate's 'benchmarks (release)' stage runs it"
+    expect 2 'no benchmark matches' ./build/dev/cli/axisproof bench --filter '^no such benchmark$' ;;
+  ci-mutate)
+    patches=$(ls ci/mutants/*.patch | wc -l)
+    expect 0 '' ci/mutate --list
+    [[ $(grep -cE '^[a-z0-9]+-' <<<"$out") -ge $patches ]] || fail "ci/mutate --list names fewer mutants than the $patches patches" ;;
+  ci-nightly-fuzz)
+    # Its two parts, `axisproof fuzz` and `ci/coverage corpus`, have smokes of their own; here
+    # its usage (it writes to fuzz/corpus, which a test must not).
+    expect 0 'nightly' ci/nightly-fuzz --help
+    expect 2 'usage' ci/nightly-fuzz --no-such-option ;;
+  ci-coverage)
+    # A profile of one instrumented test, reported as the gate does (--build-dir, --profiles).
+    grep -q '^AP_COVERAGE:BOOL=ON' "$build/CMakeCache.txt" || fail "$build is not built with coverage"
+    mkdir -p "$tmp/prof"
+    LLVM_PROFILE_FILE="$tmp/prof/%m.profraw" "$build/properties/protocol/protocol_unit" --gtest_brief=1 >/dev/null 2>&1 ||
+      fail "protocol_unit failed"
+    expect 0 'branch' ci/coverage tests --build-dir "$build" --profiles "$tmp/prof" ;;
+  ci-m4-build)
+    expect 0 'flash' ci/m4-build --out "$tmp/m4" ;;
+  ci-fresh-machine)
+    # The real run needs tens of minutes and the package mirror (README.md): usage only.
+    expect 0 'debootstrap' ci/fresh-machine --help
+    expect 2 'unknown argument' ci/fresh-machine --no-such-option ;;
+  *) echo "readme-smoke.sh: unknown key '$key'" >&2; exit 2 ;;
+esac
+echo "ok readme.$key"
