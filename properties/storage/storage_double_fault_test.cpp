@@ -25,6 +25,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -420,24 +421,28 @@ struct Tally {
 
 std::string at(const char* what, std::size_t k) { return std::string(what) + "@" + std::to_string(k); }
 
-// S1 with a cut after each of its bytes (none: k == bytes), each followed by a reboot; the
-// distinct states the reboots leave (a boot is a function of the chip image).
+// S1 with a cut after each of its bytes, each followed by a reboot; the distinct states the
+// reboots leave (a boot is a function of the chip image) and how many cut points left each.
 std::vector<Between> s1_cut_states(Rig& rig, const Between& start, const char* name, Tally& tally,
-                                   std::size_t& enumerated) {
+                                   std::vector<std::size_t>& multiplicity) {
   std::vector<Between> out;
-  std::unordered_set<std::string> seen;
+  std::unordered_map<std::string, std::size_t> seen;
   SaveTrace clean{};
   Failure fail{};
   Between mid;
   EXPECT_TRUE(rig.s1(start, {}, mid, clean, fail)) << fail.what;
   for (std::size_t k = 0; k < clean.bytes; ++k) {
     SaveTrace t{};
-    ++enumerated;
     if (!rig.s1(start, SaveFaults{std::nullopt, k}, mid, t, fail)) {
       tally.fail(name, fail.what, at("cut S1", k));
       continue;
     }
-    if (seen.insert(image_key(mid)).second) out.push_back(mid);
+    const auto [it, fresh] = seen.emplace(image_key(mid), out.size());
+    if (fresh) {
+      out.push_back(mid);
+      multiplicity.push_back(0);
+    }
+    ++multiplicity[it->second];
   }
   return out;
 }
@@ -455,12 +460,12 @@ TEST(storage_double_fault, every_pair_of_power_cuts) {
     SaveTrace clean{};
     Between clean_mid;
     ASSERT_TRUE(rig.s1(start, {}, clean_mid, clean, fail)) << fail.what;
-    std::size_t s1_cuts = 0;
-    std::vector<Between> mids = s1_cut_states(rig, start, name, tally, s1_cuts);
-    const std::size_t distinct = mids.size();
+    std::vector<std::size_t> multiplicity;
+    std::vector<Between> mids = s1_cut_states(rig, start, name, tally, multiplicity);
     mids.push_back(clean_mid);  // no cut in S1
-    std::size_t per_mid_total = 0;
-    for (const Between& mid : mids) {
+    multiplicity.push_back(1);
+    for (std::size_t i = 0; i < mids.size(); ++i) {
+      const Between& mid = mids[i];
       SaveTrace t2{};
       if (!rig.s2(mid, {}, t2, fail)) tally.fail(name, fail.what, "S2 without a cut");
       ++tally.simulated;
@@ -469,11 +474,9 @@ TEST(storage_double_fault, every_pair_of_power_cuts) {
         if (!rig.s2(mid, SaveFaults{std::nullopt, k2}, t, fail)) tally.fail(name, fail.what, at("cut S2", k2));
         ++tally.simulated;
       }
-      per_mid_total = t2.bytes + 1;
+      // every cut point of S1 that left this state, x (every cut point of S2 or none)
+      tally.enumerated += multiplicity[i] * (t2.bytes + 1);
     }
-    // (k1 in S1 or none) x (k2 in S2 or none); S2 is one fault-free attempt from every state
-    tally.enumerated += (s1_cuts + 1) * per_mid_total;
-    (void)distinct;
   }
   tally.report();
   EXPECT_EQ(tally.failures, 0U);
@@ -499,7 +502,7 @@ TEST(storage_double_fault, every_bit_flip_with_every_power_cut) {
     std::array<std::uint32_t, kRecordSize> w1{}, r1{}, w2{}, r2{};
     count_accesses(rig, start, nullptr, w1, r1);
     count_accesses(rig, start, &clean_mid, w2, r2);
-    std::size_t ignored = 0;
+    std::vector<std::size_t> ignored;
     const std::vector<Between> cut_mids = s1_cut_states(rig, start, name, tally, ignored);
     std::unordered_set<std::string> s1_cut_images;  // after an S1 cut: rebooted, S2 run from it
     std::unordered_set<std::string> s2_cut_images;  // after an S2 cut: rebooted
