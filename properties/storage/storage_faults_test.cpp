@@ -171,16 +171,22 @@ TEST(storage_faults, save_that_cannot_be_verified_is_a_fault_and_changes_nothing
   }
 }
 
+// An attempt is five transactions (docs/storage.md, "Save protocol"): WREN, WRITE of the spoil
+// key, WREN, WRITE of the record, READ. Any one of them failing costs exactly one more attempt.
 TEST(storage_faults, one_failed_transaction_costs_one_more_attempt) {
-  FlakyBus b;
-  ParameterStore store(b.bus());
-  (void)store.boot();
-  b.transactions = 0;
-  b.fail_at = 1;   // the first round's WRITE (after its WREN)
-  const SaveResult r = store.save(other_set());
-  EXPECT_EQ(r.status, StoreStatus::Ok);
-  EXPECT_EQ(r.attempts, 2u);
-  EXPECT_TRUE(store.current() == other_set());
+  for (std::size_t n = 0; n < 5; ++n) {
+    SCOPED_TRACE(testing::Message() << "failing transaction " << n << " of the first attempt");
+    FlakyBus b;
+    ParameterStore store(b.bus());
+    (void)store.boot();
+    b.transactions = 0;
+    b.fail_at = n;
+    const SaveResult r = store.save(other_set());
+    EXPECT_EQ(r.status, StoreStatus::Ok);
+    EXPECT_EQ(r.attempts, 2u);
+    EXPECT_EQ(b.transactions, (n + 1) + 5u) << "a failed transaction ends its attempt; the next attempt is whole";
+    EXPECT_TRUE(store.current() == other_set());
+  }
 }
 
 TEST(storage_faults, invalid_sets_are_typed_rejections_that_write_nothing) {

@@ -97,7 +97,9 @@ TEST(storage_golden, thesis_max_acceleration_20000_at_0x0000_lsb_first) {
 }
 
 // The same bytes end-to-end: a PARAM_SET of 20000 through the store, on the SPI wire and in
-// the chip at 0x0000 (thesis §9.2, Obr. 9-4).
+// the chip at 0x0000 (thesis §9.2, Obr. 9-4). The frames of one save are the protocol of
+// docs/storage.md ("Save protocol"): WREN, WRITE of the spoil key (the complement of the new
+// record's CRC) into the target's CRC field, WREN, WRITE of the whole record, READ of it.
 TEST(storage_golden, thesis_write_on_the_wire_and_in_the_chip) {
   auto chip = std::make_unique<Mb85rs256b>();
   Tap tap{chip.get(), {}};
@@ -110,21 +112,38 @@ TEST(storage_golden, thesis_write_on_the_wire_and_in_the_chip) {
   tap.frames.clear();
   const SaveResult r = store.set_parameter(id_of(ParamId::MaxAcceleration), 20000);
   ASSERT_EQ(r.status, StoreStatus::Ok);
-  bool seen = false;
-  for (const auto& f : tap.frames) {
-    if (f.size() > 3 && f[0] == opcode::kWrite) {
-      const std::uint16_t a = static_cast<std::uint16_t>(f[1] << 8 | f[2]);
-      EXPECT_EQ(a, 0x0000);
-      EXPECT_EQ(f[3], 0x20);
-      EXPECT_EQ(f[4], 0x4E);
-      EXPECT_EQ(f[5], 0x00);
-      EXPECT_EQ(f[6], 0x00);
-      seen = true;
-    }
+  EXPECT_EQ(r.attempts, 1);
+  ASSERT_EQ(tap.frames.size(), 5U);
+  const auto& f = tap.frames;
+  // 1. WREN + WRITE 0x004C: the spoil key, 4 bytes
+  EXPECT_EQ(f[0], std::vector<std::uint8_t>{opcode::kWren});
+  ASSERT_EQ(f[1].size(), 3U + 4U);
+  EXPECT_EQ(f[1][0], opcode::kWrite);
+  EXPECT_EQ(f[1][1], 0x00);
+  EXPECT_EQ(f[1][2], 0x4C);
+  // 2. WREN + WRITE 0x0000: the record, 20000 LSB first
+  EXPECT_EQ(f[2], std::vector<std::uint8_t>{opcode::kWren});
+  ASSERT_EQ(f[3].size(), 3U + kRecordSize);
+  EXPECT_EQ(f[3][0], opcode::kWrite);
+  EXPECT_EQ(f[3][1], 0x00);
+  EXPECT_EQ(f[3][2], 0x00);
+  EXPECT_EQ(f[3][3], 0x20);
+  EXPECT_EQ(f[3][4], 0x4E);
+  EXPECT_EQ(f[3][5], 0x00);
+  EXPECT_EQ(f[3][6], 0x00);
+  // the record's last 4 bytes are the CRC-32 of the 76 before them, and the key is its complement
+  const std::uint32_t crc = crc32(std::span<const std::uint8_t>(f[3].data() + 3, 0x4C));
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(f[3][3 + 0x4C + i], static_cast<std::uint8_t>(crc >> (8 * i))) << i;
+    EXPECT_EQ(f[1][3 + i], static_cast<std::uint8_t>(~crc >> (8 * i))) << i;
   }
-  EXPECT_TRUE(seen);
-  ASSERT_GE(tap.frames.size(), 3U);
-  EXPECT_EQ(tap.frames[0], std::vector<std::uint8_t>{opcode::kWren});
+  // 3. READ 0x0000 of the whole record
+  ASSERT_EQ(f[4].size(), 3U + kRecordSize);
+  EXPECT_EQ(f[4][0], opcode::kRead);
+  EXPECT_EQ(f[4][1], 0x00);
+  EXPECT_EQ(f[4][2], 0x00);
+  EXPECT_EQ(chip->memory()[0x0000], 0x20);
+  EXPECT_EQ(chip->memory()[0x0001], 0x4E);
 }
 
 TEST(storage_golden, first_save_on_a_blank_chip_puts_20000_at_0x0000) {

@@ -53,14 +53,31 @@ SaveResult ParameterStore::save(const ParameterSet& next) noexcept {
 
   // Never the copy holding the current set: that copy is what a torn write falls back to.
   const std::size_t target = active_ == 0 ? 1U : 0U;
+  const auto base = static_cast<std::uint16_t>(kCopyBase[target]);
+  const auto crc_field = static_cast<std::uint16_t>(kCopyBase[target] + kCrcOffset);
+  // The sequence may equal one a failed save left in the target copy: harmless, because no
+  // byte of the target is written before its CRC field is keyed to this record (below).
   const std::uint32_t seq = sequence_ + 1U;
   RecordBytes image{};
   encode_record(next, seq, image);
+  // The spoil key: the complement of this record's CRC. It differs from the CRC in all 32 bits,
+  // and it depends only on this record, so spoiling twice changes nothing (docs/storage.md,
+  // "Save protocol": a key taken from the stored CRC would undo an earlier spoil).
+  std::array<std::uint8_t, 4> spoil{};
+  put_le(spoil, 0, 4, ~get_le(image, kCrcOffset, 4));
   RecordBytes readback{};
 
   for (std::uint8_t attempt = 1; attempt <= kMaxSaveAttempts; ++attempt) {
-    const bool written = fram_.write(kCopyBase[target], image);
-    const bool read = written && fram_.read(kCopyBase[target], readback);
+    // 1. Spoil: the target's CRC field := key, before any record byte changes. Whatever the
+    //    copy held (a failed save's record, an older set, noise), from here until the last
+    //    CRC byte of step 2 lands it is new prefix + anything + key: never valid (except a
+    //    2^-32 CRC collision), so a torn write cannot rebuild an old record from our prefix.
+    // 2. The whole record in one WRITE; its CRC is its last field, so the copy becomes valid
+    //    exactly when the last CRC byte lands (the commit point).
+    // 3. Read back all 80 bytes and compare.
+    const bool spoiled = fram_.write(crc_field, spoil);
+    const bool written = spoiled && fram_.write(base, image);
+    const bool read = written && fram_.read(base, readback);
     if (read && std::equal(image.begin(), image.end(), readback.begin())) {
       current_ = next;
       sequence_ = seq;
@@ -70,11 +87,9 @@ SaveResult ParameterStore::save(const ParameterSet& next) noexcept {
     }
   }
 
-  // The copy may still hold our record intact if only the read path failed; spoil its CRC so
+  // The copy may still hold our record intact if only the read path failed; spoil it again so
   // unverified data can never be picked at the next boot (best effort: the bus may be dead).
-  std::array<std::uint8_t, 4> spoiled{};
-  put_le(spoiled, 0, 4, ~get_le(image, kCrcOffset, 4));
-  (void)fram_.write(static_cast<std::uint16_t>(kCopyBase[target] + kCrcOffset), spoiled);
+  (void)fram_.write(crc_field, spoil);
   fault_ = true;
   return {StoreStatus::StorageFault, kMaxSaveAttempts, ParamId::MaxAcceleration};
 }
