@@ -270,8 +270,9 @@ void Board::step_axes() {
     if (edge == axis::Edge::G || edge == axis::Edge::H) {
       // Homing reached its reference only if the axis core took it (a stop in the same tick
       // ends the homing first: then it is a plain endstop stop; docs/echo-model.md).
-      event_[i] = before.mode == axis::Mode::Home && edge == axis::Edge::G && r.state.homed != 0 ? AxisEvent::Reached
-                                                                                             : AxisEvent::Endstop;
+      // The Home may also be this tick's command, given while moving down onto the switch.
+      const bool homing = before.mode == axis::Mode::Home || in.cmd.kind == axis::CmdKind::Home;
+      event_[i] = homing && edge == axis::Edge::G && r.state.homed != 0 ? AxisEvent::Reached : AxisEvent::Endstop;
     } else if (r.out.error == axis::Error::HomeFailed) {
       event_[i] = AxisEvent::HomeFailed;
     } else if (before.mode == axis::Mode::Jog && r.state.mode == axis::Mode::Idle && in.link_alive == 0 &&
@@ -279,13 +280,20 @@ void Board::step_axes() {
       event_[i] = AxisEvent::LinkLost;
     } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && r.state.pos == before.target) {
       event_[i] = AxisEvent::Reached;
+    } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && !moving(before) &&
+               in.cmd.kind == axis::CmdKind::None && in.blocked == 0) {
+      // A move standing short of its target (the reversal stop of a move that turned round)
+      // whose way on is closed by an active or latched endstop: the axis core drops it (edge
+      // I, motion.md §4), and the endstop is what ended it (docs/echo-model.md).
+      event_[i] = AxisEvent::Endstop;
     } else if ((in.cmd.kind == axis::CmdKind::MoveAbs || in.cmd.kind == axis::CmdKind::MoveRel) &&
                r.out.error == axis::Error::None && r.state.mode == axis::Mode::Idle && !moving(r.state)) {
       // A move to where the carriage already is: the requested position is reached
       // (docs/echo-model.md), not "standing, no target".
       event_[i] = AxisEvent::Reached;
-    } else if ((before.mode == axis::Mode::Home || in.cmd.kind == axis::CmdKind::Home) && r.out.error == axis::Error::None &&
+    } else if ((before.mode == axis::Mode::Home || (in.cmd.kind == axis::CmdKind::Home && r.out.error == axis::Error::None)) &&
                r.state.mode == axis::Mode::Idle && r.state.homed != 0 && !moving(r.state)) {
+      // (A command of this tick the core refused does not hide a homing that completed.)
       // Homing that completes at standstill (switch already active, motion.md §6) is the same
       // completed reference as the G edge above: REACHED (docs/echo-model.md).
       event_[i] = AxisEvent::Reached;
@@ -540,7 +548,11 @@ HandlerStatus Board::set_parameter(Axis a, c::CommandId id, st::ParamId pid, std
   // At rest also means no motion command earlier in this frame: its distance was converted
   // with the mechanics in force when its handler ran, and a pitch or microstep change would
   // rescale the counter under it (a -60 mm move became -3.75 mm; docs/echo-model.md).
-  if (!currents && (moving(axes_[0]) || moving(axes_[1]) ||
+  // At rest also means holding no motion: a jog held at its reversal stop or at a soft limit
+  // steps again on the next tick, and the mechanics change below would drop its mode without
+  // an event (docs/echo-model.md).
+  const auto holds = [this](std::size_t k) { return moving(axes_[k]) || axes_[k].mode != axis::Mode::Idle; };
+  if (!currents && (holds(0) || holds(1) ||
                     (mechanics && (pending_motion(0) == Pending::Accepted || pending_motion(1) == Pending::Accepted)))) {
     return refuse(a, id);
   }

@@ -68,10 +68,14 @@ void EchoModel::begin_tick(const Env& env) {
            : battery_low_ ? EchoStatus::BlockedBattery
                           : EchoStatus::Idle;
   if (was == EchoStatus::Idle && block_ != EchoStatus::Idle) {
-    // G16 / motion.md §7: blocking drops every pending move; the axes brake to a stop.
+    // G16 / motion.md §7: blocking drops every pending move; the axes brake to a stop. What
+    // ended a motion before the block (a user stop, the watchdog ending a jog) is the "last
+    // event" G16 clears on leaving BLOCKED, also when the axis still brakes then
+    // (docs/echo-model.md "Decisions").
     for (auto& x : ax_) {
       if (x.act != Activity::Idle) x.act = Activity::Braking;
       x.stop_requested = false;
+      x.link_ended = false;
     }
   }
   if (was != EchoStatus::Idle && block_ == EchoStatus::Idle) {
@@ -84,6 +88,7 @@ void EchoModel::begin_tick(const Env& env) {
     x.refused.reset();
     x.started_now = false;
   }
+  at_tick_start_ = ax_;
   events_.clear();
   out_.clear();
   dispatched_this_tick_ = false;
@@ -158,11 +163,28 @@ bool EchoModel::motion_allowed(std::size_t a, std::int8_t dir) const {
   return true;
 }
 
+void EchoModel::supersede(std::size_t a) {
+  // docs/board.md "One cycle": the handlers only store the command; the axis core applies
+  // the last one of the cycle when the axes step. A motion command accepted earlier in this
+  // tick and replaced now never reached the axis: no motion started, none ended, homing did
+  // not clear the known position (docs/echo-model.md "Decisions"). Its refusal, if any, stays.
+  Ax& x = ax_[a];
+  if (!x.started_now) return;
+  const auto refused = x.refused;
+  x = at_tick_start_[a];
+  x.refused = refused;
+}
+
 bool EchoModel::any_moving(bool or_started_now) const {
-  // At rest: standing, and no motion command accepted earlier in this frame (its distance
-  // was converted with the mechanics in force then).
-  for (const auto& x : ax_) {
-    if (x.last.phase != Phase::Stop || (or_started_now && x.started_now)) return true;
+  // At rest (docs/board.md "Parameters and units"): standing and holding no motion (a jog
+  // held at its reversal stop or at a soft limit moves again on the next tick; a move is
+  // planned with the speeds it started with), and no motion command accepted earlier in this
+  // frame (its distance was converted with the mechanics in force then).
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    const Ax& x = ax_[a];
+    if (x.last.phase != Phase::Stop || at_tick_start_[a].act != Activity::Idle || (or_started_now && x.started_now)) {
+      return true;
+    }
   }
   return false;
 }
@@ -249,6 +271,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
   const auto a = static_cast<std::size_t>(axis);
   Ax& x = ax_[a];
   const auto start = [&](Activity act) {
+    supersede(a);
     x.act = act;
     x.ended = Ended::None;
     x.stop_requested = false;
@@ -260,6 +283,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     case CommandId::Stop:
     stop:
       // motion.md §6: a ramped stop, always accepted.
+      supersede(a);
       if (x.act != Activity::Idle) {
         x.act = Activity::Braking;
         x.stop_requested = true;
@@ -325,7 +349,9 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     case CommandId::PeriphOff:
       // G24: the axes get a ramped stop; motion commands are refused until wake.
       sleeping_ = true;
-      for (auto& y : ax_) {
+      for (std::size_t b = 0; b < kAxes; ++b) {
+        supersede(b);
+        Ax& y = ax_[b];
         if (y.act != Activity::Idle) {
           y.act = Activity::Braking;
           y.stop_requested = true;
@@ -399,10 +425,25 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
         } else if (was_moving && endstop_in_dir) {
           x.act = Activity::Idle;
           x.ended = Ended::Endstop;
+        } else if (!was_moving && !motion_allowed(a, m.pos < x.target ? 1 : -1)) {
+          // Standing short of the target (the reversal stop of a move that turned round) with
+          // the switch toward the target active or latched: motion.md §4 refuses motion toward
+          // it, so the endstop ended the move (docs/echo-model.md "Decisions").
+          x.act = Activity::Idle;
+          x.ended = Ended::Endstop;
         }
         break;
       case Activity::Home:
-        if (at_min) {  // G19: the min endstop is the reference point
+        if (was_moving && prev.dir > 0 && at_max) {  // braking upward into the max switch: H
+          x.act = Activity::Idle;
+          x.ended = Ended::Endstop;
+        } else if (was_moving && prev.dir > 0) {
+          // The reversal stop of a Home issued while moving up: still homing. motion.md §6
+          // takes the reference "at standstill", i.e. from the next tick on, also when the
+          // min switch is already active (docs/echo-model.md "Decisions").
+        } else if (at_min || (!was_moving && x.latch_min)) {
+          // G19: the min endstop is the reference point; at standstill a latched switch counts
+          // as active (motion.md §4).
           x.act = Activity::Idle;
           x.homed = true;
           x.ended = Ended::Reached;  // the reference position is reached (decision)
@@ -529,9 +570,13 @@ std::optional<Mismatch> check(const Expected& want, const frame::EchoFrame& got)
     }
     if (w.position) {
       // Within 1 um of the step counter: |data * usteps_per_rev - pos * pitch| <= usteps_per_rev.
-      const std::int64_t diff = static_cast<std::int64_t>(g.data) * want.usteps_per_rev -
-                                static_cast<std::int64_t>(w.pos_usteps) * want.pitch_um;
-      if (std::llabs(diff) > want.usteps_per_rev) {
+      // docs/protocol.md status table: the position field carries -99999 .. 999999 um; a
+      // position beyond it is sent as the nearest end (the counter itself goes to +-1e9 usteps).
+      const std::int64_t um_x_rev = static_cast<std::int64_t>(w.pos_usteps) * want.pitch_um;
+      const std::int64_t diff = static_cast<std::int64_t>(g.data) * want.usteps_per_rev - um_x_rev;
+      const bool beyond_min = g.data == codec::kPositionRange.min && um_x_rev <= g.data * want.usteps_per_rev;
+      const bool beyond_max = g.data == codec::kPositionRange.max && um_x_rev >= g.data * want.usteps_per_rev;
+      if (std::llabs(diff) > want.usteps_per_rev && !beyond_min && !beyond_max) {
         add(an + " position " + std::to_string(g.data) + " um, step counter " + std::to_string(w.pos_usteps) +
             " usteps is not within 1 um of it");
       }

@@ -157,6 +157,7 @@ class EchoModel {
   void dispatch(frame::Axis a, codec::CommandId id, std::int32_t d);
   void refuse(std::size_t a, codec::CommandId id, const char* why);
   bool motion_allowed(std::size_t a, std::int8_t dir) const;
+  void supersede(std::size_t a);
   bool any_moving(bool or_started_now) const;
   std::optional<frame::Rejection> table_check(const frame::CommandFrame& f) const;
   bool set_param(codec::CommandId id, std::int32_t d, std::string& why);
@@ -169,6 +170,9 @@ class EchoModel {
   Params p_{};
   Env env_{};
   std::array<Ax, kAxes> ax_{};
+  // Each axis as the axis core knows it at the start of the tick: a command of this tick is
+  // only applied when the axes step, so a later one in the same cycle replaces it unseen.
+  std::array<Ax, kAxes> at_tick_start_{};
   codec::EchoStatus block_ = codec::EchoStatus::Idle;  // Idle = not blocked, else BLOCKED_*
   bool battery_low_ = false;
   bool session_ = false;
