@@ -427,6 +427,12 @@ StepResult step(const State& s0, const Input& in, const Config& c) {
     case Edge::I:
       if (s.mode == Mode::Position) {
         s.mode = Mode::Idle;  // nothing (more) to do: at the target or refused
+      } else if (s.mode == Mode::Home && !estop && endstop_active(s, in, -1)) {
+        // Standing in homing on an active min switch (e.g. after the reversal stop of a Home
+        // issued while moving up): that is the reference point, as at command time (§6, G19).
+        s.pos = c.home_position;
+        s.homed = 1;
+        s.mode = Mode::Idle;
       } else if (s.mode == Mode::Home && !estop) {
         s.mode = Mode::Idle;
         out.error = Error::HomeFailed;

@@ -258,16 +258,44 @@ void Board::step_axes() {
     if (in.cmd.kind != axis::CmdKind::None && r.out.error != axis::Error::None) {
       refused_[i] = static_cast<std::uint8_t>(pending_id_[i]);
       ++counters_.refused_parts;
+    } else if (in.cmd.kind == axis::CmdKind::Stop) {
+      // The echo shows the event that ended the last motion (docs/board.md "Echo content"):
+      // a stop ends one only if the axis was moving or held a mode; at rest it changes
+      // nothing, so a REACHED stays REACHED (docs/echo-model.md).
+      if (moving(before) || before.mode != axis::Mode::Idle) event_[i] = AxisEvent::StoppedByUser;
+    } else if (in.cmd.kind != axis::CmdKind::None) {
+      event_[i] = AxisEvent::None;  // an accepted motion command starts a new motion
     }
     const axis::Edge edge = r.out.edge;
     if (edge == axis::Edge::G || edge == axis::Edge::H) {
-      event_[i] = before.mode == axis::Mode::Home && edge == axis::Edge::G ? AxisEvent::Reached : AxisEvent::Endstop;
+      // Homing reached its reference only if the axis core took it (a stop in the same tick
+      // ends the homing first: then it is a plain endstop stop; docs/echo-model.md).
+      // The Home may also be this tick's command, given while moving down onto the switch.
+      const bool homing = before.mode == axis::Mode::Home || in.cmd.kind == axis::CmdKind::Home;
+      event_[i] = homing && edge == axis::Edge::G && r.state.homed != 0 ? AxisEvent::Reached : AxisEvent::Endstop;
     } else if (r.out.error == axis::Error::HomeFailed) {
       event_[i] = AxisEvent::HomeFailed;
     } else if (before.mode == axis::Mode::Jog && r.state.mode == axis::Mode::Idle && in.link_alive == 0 &&
                in.cmd.kind == axis::CmdKind::None) {
       event_[i] = AxisEvent::LinkLost;
     } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && r.state.pos == before.target) {
+      event_[i] = AxisEvent::Reached;
+    } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && !moving(before) &&
+               in.cmd.kind == axis::CmdKind::None && in.blocked == 0) {
+      // A move standing short of its target (the reversal stop of a move that turned round)
+      // whose way on is closed by an active or latched endstop: the axis core drops it (edge
+      // I, motion.md §4), and the endstop is what ended it (docs/echo-model.md).
+      event_[i] = AxisEvent::Endstop;
+    } else if ((in.cmd.kind == axis::CmdKind::MoveAbs || in.cmd.kind == axis::CmdKind::MoveRel) &&
+               r.out.error == axis::Error::None && r.state.mode == axis::Mode::Idle && !moving(r.state)) {
+      // A move to where the carriage already is: the requested position is reached
+      // (docs/echo-model.md), not "standing, no target".
+      event_[i] = AxisEvent::Reached;
+    } else if ((before.mode == axis::Mode::Home || (in.cmd.kind == axis::CmdKind::Home && r.out.error == axis::Error::None)) &&
+               r.state.mode == axis::Mode::Idle && r.state.homed != 0 && !moving(r.state)) {
+      // (A command of this tick the core refused does not hide a homing that completed.)
+      // Homing that completes at standstill (switch already active, motion.md §6) is the same
+      // completed reference as the G edge above: REACHED (docs/echo-model.md).
       event_[i] = AxisEvent::Reached;
     }
     MotorOutput& m = motor_[i];
@@ -427,8 +455,21 @@ frame::HandlerStatus Board::set_axis_command(Axis a, c::CommandId id, const axis
   const std::size_t i = idx(a);
   pending_[i] = cmd;
   pending_id_[i] = id;
-  event_[i] = cmd.kind == axis::CmdKind::Stop ? AxisEvent::StoppedByUser : AxisEvent::None;
   return HandlerStatus::Done;
+}
+
+// What the axis core will do with this cycle's pending motion command (a dry run of its
+// command check on a copy of the state: the core decides, the board does not re-implement it).
+Board::Pending Board::pending_motion(std::size_t i) const {
+  if (pending_[i].kind == axis::CmdKind::None || pending_[i].kind == axis::CmdKind::Stop) return Pending::None;
+  axis::Input dry;
+  dry.cmd = pending_[i];
+  dry.endstop_min = in_.endstop_min[i] != 0 ? 1 : 0;
+  dry.endstop_max = in_.endstop_max[i] != 0 ? 1 : 0;
+  dry.blocked = block_ != Block::None ? 1 : 0;
+  dry.link_alive = 1;
+  return axis::step(axes_[i], dry, derived_.cfg[i]).out.error != axis::Error::None ? Pending::Refused
+                                                                                   : Pending::Accepted;
 }
 
 HandlerStatus Board::on_nop(void*, Axis, std::int32_t) { return HandlerStatus::Done; }
@@ -504,7 +545,25 @@ HandlerStatus Board::set_parameter(Axis a, c::CommandId id, st::ParamId pid, std
   // and acceleration it started with: a lower deceleration mid-move would carry the axis
   // past a target it could reach before (found by fuzz/board), and changed mechanics would
   // make the step counter and the target meaningless.
-  if (!currents && (moving(axes_[0]) || moving(axes_[1]))) return refuse(a, id);
+  // At rest also means no motion command earlier in this frame: its distance was converted
+  // with the mechanics in force when its handler ran, and a pitch or microstep change would
+  // rescale the counter under it (a -60 mm move became -3.75 mm; docs/echo-model.md).
+  // At rest also means holding no motion: a jog held at its reversal stop or at a soft limit
+  // steps again on the next tick, and the mechanics change below would drop its mode without
+  // an event (docs/echo-model.md).
+  const auto holds = [this](std::size_t k) { return moving(axes_[k]) || axes_[k].mode != axis::Mode::Idle; };
+  if (!currents && (holds(0) || holds(1) ||
+                    (mechanics && (pending_motion(0) == Pending::Accepted || pending_motion(1) == Pending::Accepted)))) {
+    return refuse(a, id);
+  }
+  // A pending motion command the axis core will refuse keeps its refusal now: a change of
+  // the mechanics below would rescale the counter under its converted distance.
+  for (std::size_t k = 0; k < kAxes; ++k) {
+    if (mechanics && pending_motion(k) == Pending::Refused) {
+      refused_[k] = static_cast<std::uint8_t>(pending_id_[k]);
+      pending_[k] = {};
+    }
+  }
   const st::SaveResult r = store_.save(next);
   if (!r.ok()) {
     // The store keeps using the previous verified set; so does the board.
@@ -566,6 +625,11 @@ HandlerStatus Board::on_periph_off(void* ctx, Axis, std::int32_t) {
   auto* b = static_cast<Board*>(ctx);
   b->sleeping_ = true;
   for (std::size_t i = 0; i < kAxes; ++i) {
+    // A motion command earlier in this frame that the axis core would refuse (out of the
+    // soft limits, toward an endstop, ...) is still reported as refused: the stop replaces
+    // it, but the PC must not lose the typed error (docs/board.md "Echo content",
+    // docs/echo-model.md "Decisions").
+    if (b->pending_motion(i) == Pending::Refused) b->refused_[i] = static_cast<std::uint8_t>(b->pending_id_[i]);
     b->pending_[i] = {axis::CmdKind::Stop, 0, 0, 0};
     b->pending_id_[i] = c::CommandId::PeriphOff;
   }

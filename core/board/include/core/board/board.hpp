@@ -178,6 +178,8 @@ class Board {
   void send_echoes();
 
   bool motion_permitted();
+  enum class Pending : std::uint8_t { None, Accepted, Refused };
+  Pending pending_motion(std::size_t i) const;
   frame::HandlerStatus set_axis_command(Axis a, codec::CommandId id, const axis::Command& c);
   frame::HandlerStatus set_parameter(Axis a, codec::CommandId id, storage::ParamId pid, std::int32_t value);
   bool apply_currents();

@@ -1,0 +1,67 @@
+// Wires the echo model (echo_model.hpp) to a running board::Board: a twin of the receive path
+// turns the UART bytes into frame events, the board's sampled inputs and axis motion feed the
+// model, and every echo the board sent in the tick is compared with its prediction.
+//
+// Used by the stateful property test (properties/board), the simulated board (firmware/sim)
+// and, later, the board fuzz target. Per tick:
+//   checker.rx(bytes);                     // whatever was handed to board.uart_rx()
+//   board.tick();
+//   for (auto& m : checker.after_tick(echo_bytes_sent_in_that_tick)) report(m);
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "codec/layout.hpp"
+#include "core/board/board.hpp"
+#include "core/frame/stream_framer.hpp"
+#include "models/echo/echo_model.hpp"
+
+namespace ap::model::echo {
+
+using EchoBytes = std::array<std::uint8_t, codec::kEchoLength>;
+
+// The link layer as docs/board.md "One cycle" step 3 describes it: bytes stored by the
+// receive interrupt wait in a ring and are framed at the next tick, at most four frame
+// events per tick (kMaxEchoesPerCycle); the rest wait. The framer itself is core/frame's
+// (verified by properties/protocol); what a frame means is the model's business.
+class LinkTwin {
+ public:
+  void rx(std::span<const std::uint8_t> bytes);
+  std::vector<FrameEvent> tick();
+
+ private:
+  std::vector<std::uint8_t> ring_;
+  frame::RawCommandFramer framer_;
+};
+
+// Boot facts of a board, as a test that set up its inputs knows them: an axis is homed when
+// its encoder reading was valid at boot (docs/board.md "Step counter and boot"; a saved
+// counter is the other way, which the caller states).
+// The step counters are read from the booted board (an observation, like all positions).
+Boot boot_facts(const board::Board& b, const board::Inputs& at_boot, std::array<bool, kAxes> saved_counter_valid = {});
+
+// Env and Motion from the board's observers (the sampled inputs; the axis core's phase and
+// step counter and this tick's motor output).
+Env env_of(const board::Inputs& in);
+Motion motion_of(const board::Board& b);
+
+class BoardChecker {
+ public:
+  BoardChecker(const board::Board& b, const Boot& boot) : board_(b), model_(boot) {}
+  void rx(std::span<const std::uint8_t> bytes) { link_.rx(bytes); }
+  // After board.tick(): the echoes the board sent during that tick. Returns the
+  // disagreements (empty when the board agrees with the model), each one readable.
+  std::vector<std::string> after_tick(std::span<const EchoBytes> sent);
+  EchoModel& model() { return model_; }
+
+ private:
+  const board::Board& board_;
+  EchoModel model_;
+  LinkTwin link_;
+};
+
+}  // namespace ap::model::echo

@@ -1,0 +1,197 @@
+// The reference model of what the PC sees: one expected echo per frame event the board
+// handles, predicted from the documents (docs/board.md "One cycle" and "Echo content",
+// docs/protocol.md, docs/motion.md §4-§8, docs/storage.md, seed-000.md §3.6-§3.7, §4.7) and
+// written without reading core/board's logic. docs/echo-model.md has the decisions.
+//
+// What the model predicts by itself: the echo's seq, each axis status, the data of every
+// non-position status (fault code, reason*100 + offset, refused command ID), and which of
+// the subscriber packets carry what. What it takes as an observation, because it is motion
+// physics and core/axis is verified against models/motion on its own (docs/motion.md §12,
+// §14): each axis's phase (Stop/Accel/Const/Decel) and step counter after the tick. From
+// those it checks the position data (within 1 um of the counter) and names the moving
+// statuses, and it checks that motion starts only when the model accepted a motion command.
+//
+// Use, once per 1 ms control tick, in this order (the board's cycle order):
+//   model.begin_tick(env);                 // the inputs the board sampled this tick
+//   model.frame(ev); ...                   // each frame event the board handles this tick
+//   auto expected = model.end_tick(motion);// after the axes stepped: one Expected per event
+//   check(expected[i], echo_i)             // -> std::optional<Mismatch>
+// LinkTwin (link_twin.hpp) turns the UART bytes into the frame events as the board's
+// receive path does; BoardChecker (board_checker.hpp) wires all of it to a board::Board.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "codec/commands.hpp"
+#include "codec/layout.hpp"
+#include "codec/statuses.hpp"
+#include "core/frame/frames.hpp"
+
+namespace ap::model::echo {
+
+inline constexpr std::size_t kAxes = 2;
+
+// Board-visible inputs of one tick (what Hardware::sample delivered).
+struct Env {
+  bool usb = false;
+  bool charger = false;
+  std::uint16_t battery_mv = 4000;
+  std::int32_t charge_ma = 0;
+  std::int32_t temperature_mc = 25000;
+  std::int32_t rotation_mdeg = 0;
+  bool ble_status1 = false;  // (0, 1) = Data Session open (Tab. 7-2)
+  bool ble_status2 = true;
+  std::array<bool, kAxes> endstop_min{};
+  std::array<bool, kAxes> endstop_max{};
+};
+
+// The observed motion of one axis after the tick (the axis core's phase and step counter,
+// and the STEP pulses of this tick with their DIR).
+enum class Phase : std::uint8_t { Stop = 0, Accel = 1, Const = 2, Decel = 3 };
+struct AxisMotion {
+  Phase phase = Phase::Stop;
+  std::int32_t pos = 0;    // usteps
+  std::int32_t steps = 0;  // emitted this tick
+  std::int8_t dir = 1;
+};
+using Motion = std::array<AxisMotion, kAxes>;
+
+// One frame event of the receive path: the link layer's verdict (syntax, CRC; docs/protocol.md
+// "Receiving") and, when intact, the frame with its IDs as received (00..99, not yet checked
+// against the tables: that is the callback table's job, predicted by the model).
+struct FrameEvent {
+  frame::Rejection link{};
+  frame::CommandFrame frame{};
+};
+
+// What the model knows at power-up.
+struct Boot {
+  std::array<bool, kAxes> homed{};  // a valid encoder reading (or saved counter) seeded the counter
+  std::array<std::int32_t, kAxes> pos{};  // the step counters after boot (observed, usteps)
+};
+
+struct ExpectedAxis {
+  codec::EchoStatus status = codec::EchoStatus::Idle;
+  std::int32_t data = 0;  // exact, unless `position` is set
+  bool position = false;  // data is the position in um: within 1 um of pos_usteps below
+  std::int32_t pos_usteps = 0;
+};
+
+struct ExpectedPacket {
+  frame::SubscriberSlot slot{};
+  std::optional<std::int32_t> data;  // nullopt: the model does not predict this value
+};
+
+struct Expected {
+  std::uint16_t seq = 0;
+  std::array<ExpectedAxis, kAxes> axis{};
+  std::array<ExpectedPacket, codec::kSubscriberSlots> subs{};
+  // The mechanics in force when the echo was built (for the um <-> ustep tolerance).
+  std::int64_t usteps_per_rev = 3200;
+  std::int64_t pitch_um = 2000;
+  std::string why;  // the model's reasoning, for the mismatch text
+};
+
+struct Mismatch {
+  std::string text;
+};
+
+// Compares one echo with its prediction; nullopt when they agree.
+std::optional<Mismatch> check(const Expected& want, const frame::EchoFrame& got);
+
+// The model's own view of an axis (readable in mismatch texts and tests).
+enum class Activity : std::uint8_t { Idle, Jog, Position, Home, Braking };
+enum class Ended : std::uint8_t { None, Reached, Stopped, Endstop, LinkLost, HomeFailed };
+
+class EchoModel {
+ public:
+  explicit EchoModel(const Boot& boot);
+
+  void begin_tick(const Env& env);
+  void frame(const FrameEvent& ev);
+  // The expected echoes of this tick's frame events, in order. Also checks the observed
+  // motion against the model (see violations()).
+  std::span<const Expected> end_tick(const Motion& motion);
+
+  // A hardware fault the caller caused (FRAM or driver SPI): the model cannot see hardware.
+  void hardware_fault(std::int32_t code) { fault_ = code; }
+
+  // Observed motion the model forbids (an axis that starts with no accepted motion command,
+  // or moves while blocked once stopped). Cleared by take_violations().
+  std::vector<std::string> take_violations();
+
+  // Observers for tests.
+  Activity activity(std::size_t a) const { return ax_[a].act; }
+  Ended ended(std::size_t a) const { return ax_[a].ended; }
+  bool blocked() const { return block_ != codec::EchoStatus::Idle; }
+  bool sleeping() const { return sleeping_; }
+  std::uint32_t ticks() const { return ticks_; }
+
+ private:
+  struct Params {
+    std::int32_t accel = 20000, fast = 10000, slow = 2000, start = 500, homing = 2000;
+    std::int32_t pitch = 2000, steps = 200, micro = 16, irun = 16, ihold = 8;
+    std::array<std::int32_t, kAxes> soft_min{0, 0}, soft_max{200000, 200000}, home_offset{0, 0};
+    std::int32_t low_battery = 3300;
+  };
+  struct Ax {
+    Activity act = Activity::Idle;
+    std::int8_t jog_dir = 0;
+    std::int32_t target = 0;  // usteps (Position)
+    Ended ended = Ended::None;
+    bool homed = false;
+    bool latch_min = false, latch_max = false;
+    std::optional<codec::CommandId> refused;
+    bool stop_requested = false;
+    bool link_ended = false;
+    bool started_now = false;  // a motion command was accepted in this cycle  // the watchdog or the session ended the jog (G15)
+    AxisMotion last{};
+  };
+
+  void dispatch(frame::Axis a, codec::CommandId id, std::int32_t d);
+  void refuse(std::size_t a, codec::CommandId id, const char* why);
+  bool motion_allowed(std::size_t a, std::int8_t dir) const;
+  void supersede(std::size_t a);
+  bool any_moving(bool or_started_now) const;
+  std::optional<frame::Rejection> table_check(const frame::CommandFrame& f) const;
+  bool set_param(codec::CommandId id, std::int32_t d, std::string& why);
+  static bool converts(const Params& p, std::string& why);
+  std::int64_t to_usteps(std::int64_t um) const;  // nearest, half away from zero
+  std::int32_t limit_min(std::size_t a) const;    // inward (up)
+  std::int32_t limit_max(std::size_t a) const;    // inward (down)
+  Expected build(std::size_t event) const;
+
+  Params p_{};
+  Env env_{};
+  std::array<Ax, kAxes> ax_{};
+  // Each axis as the axis core knows it at the start of the tick: a command of this tick is
+  // only applied when the axes step, so a later one in the same cycle replaces it unseen.
+  std::array<Ax, kAxes> at_tick_start_{};
+  codec::EchoStatus block_ = codec::EchoStatus::Idle;  // Idle = not blocked, else BLOCKED_*
+  bool battery_low_ = false;
+  bool session_ = false;
+  bool sleeping_ = false;
+  std::int32_t fault_ = 0;
+  std::uint32_t since_dispatch_ = 0xFFFFFFFFU;  // ticks; starts expired (docs/motion.md §7)
+  std::uint16_t last_seq_ = 0;
+  std::uint32_t ticks_ = 0;
+  bool dispatched_this_tick_ = false;
+
+  struct Pending {
+    bool rejected = false;
+    frame::Rejection rejection{};
+    bool blocked = false;
+    frame::CommandFrame frame{};
+  };
+  std::vector<Pending> events_;
+  std::vector<Expected> out_;
+  std::vector<std::string> violations_;
+};
+
+}  // namespace ap::model::echo

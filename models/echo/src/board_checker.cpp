@@ -1,0 +1,90 @@
+#include "models/echo/board_checker.hpp"
+
+#include "core/frame/echo_codec.hpp"
+
+namespace ap::model::echo {
+
+namespace {
+constexpr std::size_t kEventsPerTick = 4;  // docs/board.md: at most 4 frame events per tick
+constexpr std::size_t kRing = 256;         // docs/board.md: the 256-byte receive ring
+}  // namespace
+
+void LinkTwin::rx(std::span<const std::uint8_t> bytes) {
+  for (const std::uint8_t b : bytes) {
+    if (ring_.size() < kRing) ring_.push_back(b);  // overflow: dropped (counted by the board)
+  }
+}
+
+std::vector<FrameEvent> LinkTwin::tick() {
+  std::vector<FrameEvent> out;
+  std::size_t used = 0;
+  while (used < ring_.size() && out.size() < kEventsPerTick) {
+    if (auto e = framer_.push(ring_[used++])) out.push_back({e->rejection, e->frame});
+  }
+  ring_.erase(ring_.begin(), ring_.begin() + static_cast<std::ptrdiff_t>(used));
+  return out;
+}
+
+Boot boot_facts(const board::Board& board, const board::Inputs& in, std::array<bool, kAxes> saved) {
+  Boot b;
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    b.homed[a] = in.encoder[a].valid != 0 || saved[a];
+    b.pos[a] = board.axis_state(static_cast<board::Axis>(a)).pos;
+  }
+  return b;
+}
+
+Env env_of(const board::Inputs& in) {
+  Env e;
+  e.usb = in.usb;
+  e.charger = in.charger;
+  e.battery_mv = in.battery_mv;
+  e.charge_ma = in.charge_ma;
+  e.temperature_mc = in.temperature_mc;
+  e.rotation_mdeg = in.rotation_mdeg;
+  e.ble_status1 = in.ble_status1;
+  e.ble_status2 = in.ble_status2;
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    e.endstop_min[a] = in.endstop_min[a] != 0;
+    e.endstop_max[a] = in.endstop_max[a] != 0;
+  }
+  return e;
+}
+
+Motion motion_of(const board::Board& b) {
+  Motion m;
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    const auto ax = static_cast<board::Axis>(a);
+    const axis::State& s = b.axis_state(ax);
+    m[a].phase = static_cast<Phase>(s.phase);
+    m[a].pos = s.pos;
+    m[a].steps = b.motor_output(ax).steps;
+    m[a].dir = b.motor_output(ax).dir;
+  }
+  return m;
+}
+
+std::vector<std::string> BoardChecker::after_tick(std::span<const EchoBytes> sent) {
+  std::vector<std::string> bad;
+  model_.begin_tick(env_of(board_.inputs()));
+  for (const FrameEvent& ev : link_.tick()) model_.frame(ev);
+  const auto want = model_.end_tick(motion_of(board_));
+  const std::string at = "tick " + std::to_string(board_.ticks()) + ": ";
+  for (auto& v : model_.take_violations()) bad.push_back(at + "motion: " + v);
+  if (sent.size() != want.size()) {
+    bad.push_back(at + std::to_string(sent.size()) + " echoes sent, the model expects " + std::to_string(want.size()));
+  }
+  for (std::size_t i = 0; i < sent.size() && i < want.size(); ++i) {
+    frame::EchoFrame e;
+    const frame::Rejection r = frame::parse_echo(sent[i], e);
+    if (!r.ok()) {
+      bad.push_back(at + "echo " + std::to_string(i) + " does not parse (error " +
+                    std::to_string(static_cast<int>(r.error)) + " at " + std::to_string(r.offset) + ")");
+      continue;
+    }
+    if (auto m = check(want[i], e)) bad.push_back(at + m->text);
+  }
+  return bad;
+}
+
+}  // namespace ap::model::echo

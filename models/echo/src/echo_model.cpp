@@ -1,0 +1,604 @@
+// The echo reference model. Every rule cites the document it comes from; none is taken from
+// core/board (docs/echo-model.md).
+#include "models/echo/echo_model.hpp"
+
+#include <cstdlib>
+#include <string>
+
+#include "codec/errors.hpp"
+#include "codec/subscribers.hpp"
+
+namespace ap::model::echo {
+namespace {
+
+using codec::CommandId;
+using codec::EchoStatus;
+using codec::FrameError;
+
+// docs/motion.md §2 and §10: core ranges in usteps.
+constexpr std::int64_t kSpeedMax = 1'000'000;      // usteps/s
+constexpr std::int64_t kAccelMax = 10'000'000;     // usteps/s^2
+constexpr std::int64_t kPosMax = 1'000'000'000;    // usteps
+// docs/motion.md §7: alive while fewer than 300 ticks passed since the last dispatched frame.
+constexpr std::uint32_t kWatchdogTicks = 300;
+// docs/board.md G23.
+constexpr std::int32_t kBatteryHysteresisMv = 100;
+
+std::string status_name(EchoStatus s) {
+  const auto* info = codec::find_status(static_cast<std::uint32_t>(s));
+  return info != nullptr ? std::string(info->key) : "status" + std::to_string(static_cast<int>(s));
+}
+
+std::int64_t div_round_nearest(std::int64_t num, std::int64_t den) {  // den > 0, half away from zero
+  const std::int64_t q = (std::llabs(num) * 2 + den) / (2 * den);
+  return num < 0 ? -q : q;
+}
+std::int64_t div_floor(std::int64_t num, std::int64_t den) {
+  std::int64_t q = num / den;
+  if ((num % den != 0) && (num < 0)) --q;
+  return q;
+}
+std::int64_t div_ceil(std::int64_t num, std::int64_t den) { return -div_floor(-num, den); }
+
+bool power_of_two(std::int32_t v) { return v > 0 && (v & (v - 1)) == 0; }
+
+}  // namespace
+
+EchoModel::EchoModel(const Boot& boot) {
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    ax_[a].homed = boot.homed[a];
+    ax_[a].last.pos = boot.pos[a];
+  }
+}
+
+// ---------------------------------------------------------------- begin of cycle (§7.5.1)
+void EchoModel::begin_tick(const Env& env) {
+  ++ticks_;
+  env_ = env;
+  // G23: blocked below the stored threshold, left at threshold + 100 mV.
+  if (battery_low_) {
+    if (env.battery_mv >= p_.low_battery + kBatteryHysteresisMv) battery_low_ = false;
+  } else if (env.battery_mv < p_.low_battery) {
+    battery_low_ = true;
+  }
+  // Priority of causes in the echo: USB > charger > battery (docs/board.md G23).
+  const EchoStatus was = block_;
+  block_ = env.usb ? EchoStatus::BlockedUsb
+           : env.charger ? EchoStatus::BlockedCharger
+           : battery_low_ ? EchoStatus::BlockedBattery
+                          : EchoStatus::Idle;
+  if (was == EchoStatus::Idle && block_ != EchoStatus::Idle) {
+    // G16 / motion.md §7: blocking drops every pending move; the axes brake to a stop. What
+    // ended a motion before the block (a user stop, the watchdog ending a jog) is the "last
+    // event" G16 clears on leaving BLOCKED, also when the axis still brakes then
+    // (docs/echo-model.md "Decisions").
+    for (auto& x : ax_) {
+      if (x.act != Activity::Idle) x.act = Activity::Braking;
+      x.stop_requested = false;
+      x.link_ended = false;
+    }
+  }
+  if (was != EchoStatus::Idle && block_ == EchoStatus::Idle) {
+    // G16: back to user control with both axes idle and the last event cleared.
+    for (auto& x : ax_) x.ended = Ended::None;
+  }
+  // Tab. 7-2 / G15: only Data Session open (STATUS1 = 0, STATUS2 = 1) carries commands.
+  session_ = !env.ble_status1 && env.ble_status2;
+  for (auto& x : ax_) {
+    x.refused.reset();
+    x.started_now = false;
+  }
+  at_tick_start_ = ax_;
+  events_.clear();
+  out_.clear();
+  dispatched_this_tick_ = false;
+}
+
+// ---------------------------------------------------------------- receive (§7.5.1 step 3)
+std::optional<frame::Rejection> EchoModel::table_check(const frame::CommandFrame& f) const {
+  // docs/protocol.md "Dispatch": per axis part in wire order: ID against the table, then the
+  // data against that command's range; then the subscriber slots. Offsets: ID_X 4, Data_X 6,
+  // ID_Y 12, Data_Y 14, slot k ID 20 + 4k, argument 22 + 4k (the frame layout table).
+  const std::array<std::pair<const frame::AxisCommand*, std::uint16_t>, 2> parts{{{&f.x, 4}, {&f.y, 12}}};
+  for (const auto& [part, off] : parts) {
+    const auto id = static_cast<std::uint32_t>(part->id);
+    if (id >= codec::kCommands.size()) return frame::Rejection{FrameError::UnknownCommand, off};
+    if (!codec::kCommands[id].range.contains(part->data)) {
+      return frame::Rejection{FrameError::DataOutOfRange, static_cast<std::uint16_t>(off + 2)};
+    }
+  }
+  for (std::size_t k = 0; k < f.subs.size(); ++k) {
+    const auto id = static_cast<std::uint32_t>(f.subs[k].id);
+    const auto off = static_cast<std::uint16_t>(20 + 4 * k);
+    const auto* info = codec::find_subscriber(id);
+    if (info == nullptr) return frame::Rejection{FrameError::UnknownSubscriber, off};
+    if (!info->arg_range.contains(f.subs[k].arg)) {
+      return frame::Rejection{FrameError::ArgOutOfRange, static_cast<std::uint16_t>(off + 2)};
+    }
+  }
+  return std::nullopt;
+}
+
+void EchoModel::frame(const FrameEvent& ev) {
+  Pending p;
+  // G15 (docs/board.md): frames in any state but Data Session open are dropped without an
+  // echo, damaged ones included.
+  if (!session_) return;
+  if (!ev.link.ok()) {  // the link layer rejected it: answered, nothing else (protocol.md)
+    p.rejected = true;
+    p.rejection = ev.link;
+    p.frame.seq = last_seq_;  // the last accepted seq at this event (protocol.md)
+    events_.push_back(p);
+    return;
+  }
+  if (const auto r = table_check(ev.frame)) {
+    p.rejected = true;
+    p.rejection = *r;
+    p.frame.seq = last_seq_;
+    events_.push_back(p);
+    return;
+  }
+  p.frame = ev.frame;
+  last_seq_ = ev.frame.seq;
+  if (block_ != EchoStatus::Idle) {  // §7.5.2: commands cannot act while blocked; answered
+    p.blocked = true;
+    events_.push_back(p);
+    return;
+  }
+  // Dispatched: X handler then Y handler; the watchdog is refreshed (G15).
+  dispatch(frame::Axis::X, ev.frame.x.id, ev.frame.x.data);
+  dispatch(frame::Axis::Y, ev.frame.y.id, ev.frame.y.data);
+  since_dispatch_ = 0;
+  dispatched_this_tick_ = true;
+  events_.push_back(p);
+}
+
+void EchoModel::refuse(std::size_t a, CommandId id, const char*) { ax_[a].refused = id; }
+
+bool EchoModel::motion_allowed(std::size_t a, std::int8_t dir) const {
+  // motion.md §4 (G8): refused toward an endstop whose input is active or whose latch is set.
+  const Ax& x = ax_[a];
+  if (dir > 0) return !(env_.endstop_max[a] || x.latch_max);
+  if (dir < 0) return !(env_.endstop_min[a] || x.latch_min);
+  return true;
+}
+
+void EchoModel::supersede(std::size_t a) {
+  // docs/board.md "One cycle": the handlers only store the command; the axis core applies
+  // the last one of the cycle when the axes step. A motion command accepted earlier in this
+  // tick and replaced now never reached the axis: no motion started, none ended, homing did
+  // not clear the known position (docs/echo-model.md "Decisions"). Its refusal, if any, stays.
+  Ax& x = ax_[a];
+  if (!x.started_now) return;
+  const auto refused = x.refused;
+  x = at_tick_start_[a];
+  x.refused = refused;
+}
+
+bool EchoModel::any_moving(bool or_started_now) const {
+  // At rest (docs/board.md "Parameters and units"): standing and holding no motion (a jog
+  // held at its reversal stop or at a soft limit moves again on the next tick; a move is
+  // planned with the speeds it started with), and no motion command accepted earlier in this
+  // frame (its distance was converted with the mechanics in force then).
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    const Ax& x = ax_[a];
+    if (x.last.phase != Phase::Stop || at_tick_start_[a].act != Activity::Idle || (or_started_now && x.started_now)) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::int64_t EchoModel::to_usteps(std::int64_t um) const {
+  return div_round_nearest(um * p_.steps * p_.micro, p_.pitch);
+}
+std::int32_t EchoModel::limit_min(std::size_t a) const {
+  return static_cast<std::int32_t>(div_ceil(static_cast<std::int64_t>(p_.soft_min[a]) * p_.steps * p_.micro, p_.pitch));
+}
+std::int32_t EchoModel::limit_max(std::size_t a) const {
+  return static_cast<std::int32_t>(div_floor(static_cast<std::int64_t>(p_.soft_max[a]) * p_.steps * p_.micro, p_.pitch));
+}
+
+bool EchoModel::converts(const Params& p, std::string& why) {
+  // docs/board.md "Parameters and units": a set that does not convert into valid axis
+  // configs is refused; docs/motion.md §2 and §10 give the ranges and the rounding.
+  const std::int64_t num = static_cast<std::int64_t>(p.steps) * p.micro;
+  const auto conv = [&](std::int64_t um) { return div_round_nearest(um * num, p.pitch); };
+  const std::int64_t v_fast = conv(p.fast), v_slow = conv(p.slow), v_home = conv(p.homing);
+  std::int64_t v_start = conv(p.start);
+  if (v_start < 1) v_start = 1;  // board.md: a start speed of 0 um/s starts at 1 ustep/s
+  const std::int64_t acc = conv(p.accel);
+  if (v_fast > kSpeedMax || v_slow > kSpeedMax || v_home > kSpeedMax) return why = "speed above 1e6 usteps/s", false;
+  if (!(v_start <= v_slow && v_slow <= v_fast && v_home <= v_fast)) {
+    return why = "speeds out of order in usteps", false;
+  }
+  if (acc < 1 || acc > kAccelMax) return why = "acceleration outside [1, 1e7] usteps/s^2", false;
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    const std::int64_t lo = div_ceil(static_cast<std::int64_t>(p.soft_min[a]) * num, p.pitch);
+    const std::int64_t hi = div_floor(static_cast<std::int64_t>(p.soft_max[a]) * num, p.pitch);
+    if (lo < -kPosMax || hi > kPosMax || lo >= hi) return why = "travel range empty or outside 1e9 usteps", false;
+    if (2 * (hi - lo) > kPosMax) return why = "homing travel above 1e9 usteps", false;
+    const std::int64_t home = conv(p.home_offset[a]);
+    if (home < -kPosMax || home > kPosMax) return why = "home position outside 1e9 usteps", false;
+  }
+  return true;
+}
+
+bool EchoModel::set_param(CommandId id, std::int32_t d, std::string& why) {
+  // docs/board.md "Parameters and units": range and rule (storage map) -> cross rules
+  // (start <= slow <= fast, homing <= fast) -> conversion -> both axes at rest (every
+  // parameter except the two currents) -> save -> apply.
+  if (id == CommandId::SetIrun) return p_.irun = d, true;
+  if (id == CommandId::SetIhold) return p_.ihold = d, true;
+  Params n = p_;
+  switch (id) {
+    case CommandId::SetAccel: n.accel = d; break;
+    case CommandId::SetFastSpeed: n.fast = d; break;
+    case CommandId::SetSlowSpeed: n.slow = d; break;
+    case CommandId::SetStartSpeed: n.start = d; break;
+    case CommandId::SetPitch:
+      if (d < 100 || d > 100000) return why = "pitch outside the storage range 100..100000", false;
+      n.pitch = d;
+      break;
+    case CommandId::SetSteps:
+      if (d > 1000) return why = "steps/rev outside the storage range 1..1000", false;
+      n.steps = d;
+      break;
+    case CommandId::SetMicrosteps:
+      if (!power_of_two(d)) return why = "microsteps not a power of two", false;
+      n.micro = d;
+      break;
+    default: return why = "not a parameter", false;
+  }
+  if (!(n.start <= n.slow && n.slow <= n.fast && n.homing <= n.fast)) return why = "cross rule", false;
+  if (!converts(n, why)) return false;
+  const bool mechanics = id == CommandId::SetPitch || id == CommandId::SetSteps || id == CommandId::SetMicrosteps;
+  if (any_moving(mechanics)) return why = "an axis moves", false;
+  // board.md: pitch, steps/rev and microsteps rescale the step counters so the position in
+  // um is kept (the model's copy of the counter follows; the next observation overwrites it).
+  const std::int64_t old_num = static_cast<std::int64_t>(p_.steps) * p_.micro * n.pitch;
+  const std::int64_t new_num = static_cast<std::int64_t>(n.steps) * n.micro * p_.pitch;
+  if (old_num != new_num) {
+    for (auto& x : ax_) {
+      x.last.pos = static_cast<std::int32_t>(div_round_nearest(static_cast<std::int64_t>(x.last.pos) * new_num, old_num));
+    }
+  }
+  p_ = n;
+  return true;
+}
+
+void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
+  const auto a = static_cast<std::size_t>(axis);
+  Ax& x = ax_[a];
+  const auto start = [&](Activity act) {
+    supersede(a);
+    x.act = act;
+    x.ended = Ended::None;
+    x.stop_requested = false;
+    x.link_ended = false;
+    x.started_now = true;
+  };
+  switch (id) {
+    case CommandId::Nop: return;
+    case CommandId::Stop:
+    stop:
+      // motion.md §6: a ramped stop, always accepted.
+      supersede(a);
+      if (x.act != Activity::Idle) {
+        x.act = Activity::Braking;
+        x.stop_requested = true;
+      }
+      return;
+    case CommandId::Jog: {
+      if (d == 0) goto stop;  // G20: key released = ramped stop
+      const std::int8_t dir = d > 0 ? 1 : -1;
+      if (sleeping_) return refuse(a, id, "sleeping");  // board.md G24
+      if (!motion_allowed(a, dir)) return refuse(a, id, "toward an endstop");
+      start(Activity::Jog);
+      x.jog_dir = dir;
+      return;
+    }
+    case CommandId::Goto:
+    case CommandId::Move: {
+      if (sleeping_) return refuse(a, id, "sleeping");
+      if (!x.homed) return refuse(a, id, "position unknown");  // motion.md §6
+      std::int64_t target = 0;
+      if (id == CommandId::Goto) {
+        // motion.md §7 and §10: outside the um limits is refused; the rounded target is
+        // pulled back onto an inward-rounded limit.
+        if (d < p_.soft_min[a] || d > p_.soft_max[a]) return refuse(a, id, "outside the soft limits");
+        target = to_usteps(d);
+        if (target < limit_min(a)) target = limit_min(a);
+        if (target > limit_max(a)) target = limit_max(a);
+      } else {
+        // motion.md §6: PP = AP + delta, checked against the limits like an absolute target.
+        target = static_cast<std::int64_t>(x.last.pos) + to_usteps(d);
+        if (target < limit_min(a) || target > limit_max(a)) return refuse(a, id, "outside the soft limits");
+      }
+      const std::int8_t dir = target > x.last.pos ? 1 : target < x.last.pos ? -1 : 0;
+      if (!motion_allowed(a, dir)) return refuse(a, id, "toward an endstop");
+      start(Activity::Position);
+      x.target = static_cast<std::int32_t>(target);
+      return;
+    }
+    case CommandId::Home:
+      if (sleeping_) return refuse(a, id, "sleeping");
+      start(Activity::Home);
+      if (x.last.phase == Phase::Stop && (env_.endstop_min[a] || x.latch_min)) {
+        // motion.md §6: resting on the (active or latched) min switch is the reference point.
+        x.act = Activity::Idle;
+        x.homed = true;
+        x.ended = Ended::Reached;
+        return;
+      }
+      x.homed = false;  // motion.md §6: homing clears the known position
+      return;
+    case CommandId::SetFastSpeed:
+    case CommandId::SetSlowSpeed:
+    case CommandId::SetAccel:
+    case CommandId::SetStartSpeed:
+    case CommandId::SetPitch:
+    case CommandId::SetSteps:
+    case CommandId::SetMicrosteps:
+    case CommandId::SetIrun:
+    case CommandId::SetIhold: {
+      std::string why;
+      if (!set_param(id, d, why)) refuse(a, id, "parameter");
+      return;
+    }
+    case CommandId::PeriphOff:
+      // G24: the axes get a ramped stop; motion commands are refused until wake.
+      sleeping_ = true;
+      for (std::size_t b = 0; b < kAxes; ++b) {
+        supersede(b);
+        Ax& y = ax_[b];
+        if (y.act != Activity::Idle) {
+          y.act = Activity::Braking;
+          y.stop_requested = true;
+        }
+      }
+      return;
+    case CommandId::PeriphOn: sleeping_ = false; return;
+    case CommandId::SaveParams: return;
+    case CommandId::ClearFault: fault_ = 0; return;
+  }
+}
+
+// ---------------------------------------------------------------- after the axes stepped
+std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
+  // G15: a jog needs a dispatched frame within the last 300 ticks and an open session.
+  const bool alive = session_ && since_dispatch_ < kWatchdogTicks;
+  if (since_dispatch_ < 0xFFFFFFFFU) ++since_dispatch_;
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    Ax& x = ax_[a];
+    const AxisMotion& m = motion[a];
+    const AxisMotion prev = x.last;
+    const bool moving = m.phase != Phase::Stop;
+    const bool was_moving = prev.phase != Phase::Stop;
+    if (x.act == Activity::Jog && !alive) {
+      x.act = Activity::Braking;
+      x.stop_requested = false;  // the link ended it, not the user
+      x.ended = Ended::None;
+      x.jog_dir = 0;
+      x.link_ended = true;
+    }
+    // Endstop latches (motion.md §4): set while the input is active, cleared by a step away
+    // with the input released.
+    if (env_.endstop_min[a]) x.latch_min = true;
+    else if (x.latch_min && m.steps > 0 && m.dir > 0) x.latch_min = false;
+    if (env_.endstop_max[a]) x.latch_max = true;
+    else if (x.latch_max && m.steps > 0 && m.dir < 0) x.latch_max = false;
+
+    const bool at_min = env_.endstop_min[a], at_max = env_.endstop_max[a];
+    const bool endstop_in_dir = (prev.dir < 0 && at_min) || (prev.dir > 0 && at_max);
+
+    if (block_ != EchoStatus::Idle) {
+      if (moving && !was_moving) violations_.push_back("axis " + std::string(a == 0 ? "x" : "y") + " started while blocked");
+      if (!moving) x.act = Activity::Idle;
+      x.ended = Ended::None;
+      x.last = m;
+      continue;
+    }
+    if (moving) {
+      if (x.act == Activity::Idle && !was_moving) {
+        violations_.push_back("axis " + std::string(a == 0 ? "x" : "y") + " started at tick " + std::to_string(ticks_) +
+                              " with no accepted motion command");
+      }
+      x.last = m;
+      continue;
+    }
+    // Standing after this tick.
+    switch (x.act) {
+      case Activity::Idle: break;
+      case Activity::Jog:
+        if (was_moving && endstop_in_dir) {  // G/H: an endstop ends the jog
+          x.act = Activity::Idle;
+          x.ended = Ended::Endstop;
+        }
+        // Otherwise a reversal (E then A next tick) or the jog braked onto its soft limit:
+        // the jog is still held.
+        break;
+      case Activity::Position:
+        if (m.pos == x.target) {
+          x.act = Activity::Idle;
+          x.ended = Ended::Reached;
+        } else if (was_moving && endstop_in_dir) {
+          x.act = Activity::Idle;
+          x.ended = Ended::Endstop;
+        } else if (!was_moving && !motion_allowed(a, m.pos < x.target ? 1 : -1)) {
+          // Standing short of the target (the reversal stop of a move that turned round) with
+          // the switch toward the target active or latched: motion.md §4 refuses motion toward
+          // it, so the endstop ended the move (docs/echo-model.md "Decisions").
+          x.act = Activity::Idle;
+          x.ended = Ended::Endstop;
+        }
+        break;
+      case Activity::Home:
+        if (was_moving && prev.dir > 0 && at_max) {  // braking upward into the max switch: H
+          x.act = Activity::Idle;
+          x.ended = Ended::Endstop;
+        } else if (was_moving && prev.dir > 0) {
+          // The reversal stop of a Home issued while moving up: still homing. motion.md §6
+          // takes the reference "at standstill", i.e. from the next tick on, also when the
+          // min switch is already active (docs/echo-model.md "Decisions").
+        } else if (at_min || (!was_moving && x.latch_min)) {
+          // G19: the min endstop is the reference point; at standstill a latched switch counts
+          // as active (motion.md §4).
+          x.act = Activity::Idle;
+          x.homed = true;
+          x.ended = Ended::Reached;  // the reference position is reached (decision)
+        } else if (was_moving && prev.dir < 0) {  // travelled toward min without a switch
+          x.act = Activity::Idle;
+          x.ended = Ended::HomeFailed;
+        }
+        break;
+      case Activity::Braking:
+        x.act = Activity::Idle;
+        if (was_moving && endstop_in_dir) x.ended = Ended::Endstop;
+        else if (x.stop_requested) x.ended = Ended::Stopped;
+        else if (x.link_ended) x.ended = Ended::LinkLost;
+        x.stop_requested = false;
+        x.link_ended = false;
+        break;
+    }
+    x.last = m;
+  }
+  for (std::size_t i = 0; i < events_.size(); ++i) out_.push_back(build(i));
+  return out_;
+}
+
+Expected EchoModel::build(std::size_t i) const {
+  const Pending& ev = events_[i];
+  Expected e;
+  e.usteps_per_rev = static_cast<std::int64_t>(p_.steps) * p_.micro;
+  e.pitch_um = p_.pitch;
+  if (ev.rejected) {
+    // protocol.md "What a rejected frame may change": both axes FRAME_REJECTED with
+    // reason*100 + offset, seq = last accepted seq, empty subscriber packets.
+    e.seq = ev.frame.seq;
+    const std::int32_t data = static_cast<std::int32_t>(ev.rejection.error) * codec::kRejectReasonScale + ev.rejection.offset;
+    for (auto& x : e.axis) x = {EchoStatus::FrameRejected, data, false, 0};
+    for (auto& s : e.subs) s = {frame::SubscriberSlot{}, 0};
+    e.why = "frame rejected (" + std::to_string(static_cast<int>(ev.rejection.error)) + " at " +
+            std::to_string(ev.rejection.offset) + ")";
+    return e;
+  }
+  e.seq = ev.frame.seq;
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    const Ax& x = ax_[a];
+    ExpectedAxis& o = e.axis[a];
+    o.position = true;
+    o.pos_usteps = x.last.pos;
+    // board.md "Echo content": BLOCKED_* > FAULT > COMMAND_REFUSED > SLEEPING > moving
+    // (HOMING / ACCEL / CONST / DECEL) > the event that ended the last motion > IDLE.
+    if (block_ != EchoStatus::Idle) {
+      o.status = block_;
+    } else if (fault_ != 0) {
+      o = {EchoStatus::Fault, fault_, false, 0};
+    } else if (x.refused) {
+      o = {EchoStatus::CommandRefused, static_cast<std::int32_t>(*x.refused), false, 0};
+    } else if (sleeping_) {
+      o.status = EchoStatus::Sleeping;
+    } else if (x.last.phase != Phase::Stop) {
+      o.status = x.act == Activity::Home ? EchoStatus::Homing
+                 : x.last.phase == Phase::Accel ? EchoStatus::Accelerating
+                 : x.last.phase == Phase::Const ? EchoStatus::ConstantSpeed
+                                                : EchoStatus::Decelerating;
+    } else {
+      switch (x.ended) {
+        case Ended::Reached: o.status = EchoStatus::TargetReached; break;
+        case Ended::Stopped: o.status = EchoStatus::StoppedByUser; break;
+        case Ended::Endstop: o.status = EchoStatus::EndstopHit; break;
+        case Ended::LinkLost: o.status = EchoStatus::LinkLost; break;
+        case Ended::HomeFailed: o.status = EchoStatus::Idle; break;
+        case Ended::None: o.status = EchoStatus::Idle; break;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < e.subs.size(); ++k) {
+    const frame::SubscriberSlot s = ev.frame.subs[k];
+    ExpectedPacket& o = e.subs[k];
+    o.slot = s;
+    switch (s.id) {
+      case codec::SubscriberId::None: o.data = 0; break;
+      case codec::SubscriberId::BatteryMv: o.data = env_.battery_mv; break;
+      case codec::SubscriberId::ChargeMa: o.data = env_.charge_ma; break;
+      case codec::SubscriberId::TemperatureMc: o.data = env_.temperature_mc; break;
+      case codec::SubscriberId::RotationMdeg: o.data = env_.rotation_mdeg; break;
+      case codec::SubscriberId::Param:
+        switch (s.arg) {  // docs/storage.md map ids
+          case 0: o.data = p_.accel; break;
+          case 1: o.data = p_.fast; break;
+          case 2: o.data = p_.slow; break;
+          case 3: o.data = p_.start; break;
+          case 4: o.data = p_.pitch; break;
+          case 5: o.data = p_.steps; break;
+          case 6: o.data = p_.micro; break;
+          case 7: o.data = p_.irun; break;
+          case 8: o.data = p_.ihold; break;
+          case 15: o.data = p_.homing; break;
+          case 19: o.data = p_.low_battery; break;
+          default: o.data.reset(); break;
+        }
+        break;
+      default: o.data.reset(); break;  // encoder, DRV_STATUS, link counters: not modelled
+    }
+  }
+  e.why = block_ != EchoStatus::Idle ? "blocked" : "dispatched";
+  return e;
+}
+
+std::vector<std::string> EchoModel::take_violations() {
+  std::vector<std::string> v;
+  v.swap(violations_);
+  return v;
+}
+
+// ---------------------------------------------------------------- comparison
+std::optional<Mismatch> check(const Expected& want, const frame::EchoFrame& got) {
+  std::string t;
+  const auto add = [&](const std::string& s) { t += (t.empty() ? "" : "; ") + s; };
+  if (got.seq != want.seq) add("seq " + std::to_string(got.seq) + ", model expects " + std::to_string(want.seq));
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    const ExpectedAxis& w = want.axis[a];
+    const frame::AxisEcho& g = a == 0 ? got.x : got.y;
+    const std::string an = a == 0 ? "x" : "y";
+    if (g.status != w.status) {
+      add(an + " status " + status_name(g.status) + " (data " + std::to_string(g.data) + "), model expects " +
+          status_name(w.status));
+      continue;
+    }
+    if (w.position) {
+      // Within 1 um of the step counter: |data * usteps_per_rev - pos * pitch| <= usteps_per_rev.
+      // docs/protocol.md status table: the position field carries -99999 .. 999999 um; a
+      // position beyond it is sent as the nearest end (the counter itself goes to +-1e9 usteps).
+      const std::int64_t um_x_rev = static_cast<std::int64_t>(w.pos_usteps) * want.pitch_um;
+      const std::int64_t diff = static_cast<std::int64_t>(g.data) * want.usteps_per_rev - um_x_rev;
+      const bool beyond_min = g.data == codec::kPositionRange.min && um_x_rev <= g.data * want.usteps_per_rev;
+      const bool beyond_max = g.data == codec::kPositionRange.max && um_x_rev >= g.data * want.usteps_per_rev;
+      if (std::llabs(diff) > want.usteps_per_rev && !beyond_min && !beyond_max) {
+        add(an + " position " + std::to_string(g.data) + " um, step counter " + std::to_string(w.pos_usteps) +
+            " usteps is not within 1 um of it");
+      }
+    } else if (g.data != w.data) {
+      add(an + " " + status_name(w.status) + " data " + std::to_string(g.data) + ", model expects " +
+          std::to_string(w.data));
+    }
+  }
+  for (std::size_t k = 0; k < want.subs.size(); ++k) {
+    const ExpectedPacket& w = want.subs[k];
+    const frame::SubscriberPacket& g = got.subs[k];
+    if (!(g.slot == w.slot)) {
+      add("packet " + std::to_string(k) + " slot " + std::to_string(static_cast<int>(g.slot.id)) + "/" +
+          std::to_string(g.slot.arg) + ", model expects " + std::to_string(static_cast<int>(w.slot.id)) + "/" +
+          std::to_string(w.slot.arg));
+    } else if (w.data && g.data != *w.data) {
+      add("packet " + std::to_string(k) + " data " + std::to_string(g.data) + ", model expects " +
+          std::to_string(*w.data));
+    }
+  }
+  if (t.empty()) return std::nullopt;
+  return Mismatch{"echo seq " + std::to_string(got.seq) + " (" + want.why + "): " + t};
+}
+
+}  // namespace ap::model::echo
