@@ -135,8 +135,12 @@ struct Harness {
     } else {
       blocked_stopped = false;
     }
-    // The step counter moves by exactly the steps emitted, except where homing sets it.
-    const bool homing_reset = (s.homed != 0 && p.homed == 0) || cmd.kind == CmdKind::Home;
+    // The step counter moves by exactly the steps emitted, except where homing sets it: the
+    // first reference, a Home command, or a homing that ends on the min switch (edge G, or
+    // edge I standing on it: docs/motion.md §6, G19) in a start state that was already homed.
+    const bool rehomed = p.mode == Mode::Home && s.homed != 0 && s.pos == cfg.home_position &&
+                         (in.endstop_min != 0 || p.latch_min != 0);
+    const bool homing_reset = (s.homed != 0 && p.homed == 0) || cmd.kind == CmdKind::Home || rehomed;
     if (!homing_reset && static_cast<std::int64_t>(s.pos) - p.pos != static_cast<std::int64_t>(o.dir) * o.steps) {
       violation("position moved by other than the steps emitted", ticks);
     }

@@ -343,6 +343,28 @@ TEST(BoardEndstop, HitStopsAtOnceAndRefusesFurtherMotionTowardIt) {
   EXPECT_EQ(r.last_echo()->y.status, S::StoppedByUser);
 }
 
+// docs/motion.md §4 (G8): a latch clears only after a step away with the input released. A
+// switch active at power-up is the carriage resting on it: released by a bounce, it must still
+// refuse motion toward it (found by the board fuzz target).
+TEST(BoardEndstop, ActiveAtPowerUpIsLatchedUntilTheCarriageStepsAway) {
+  Rig r;
+  r.in.endstop_max[1] = 1;
+  r.boot();
+  r.in.endstop_max[1] = 0;  // the Hall switch bounces open
+  r.tick();
+  const std::int64_t at = r.steps_total[1];
+  jog_for(r, Axis::Y, 2, 300);
+  EXPECT_EQ(r.steps_total[1], at) << "stepped toward the switch it was resting on at power-up";
+  EXPECT_EQ(r.last_echo()->y.status, S::CommandRefused);
+  jog_for(r, Axis::Y, -1, 300);  // away from it is allowed, and clears the latch
+  EXPECT_LT(r.steps_total[1], at);
+  r.send(C::Stop, 0, C::Stop, 0);
+  r.tick(500);
+  const std::int64_t away = r.steps_total[1];
+  jog_for(r, Axis::Y, 1, 300);
+  EXPECT_GT(r.steps_total[1], away) << "the latch must clear once the carriage stepped away";
+}
+
 TEST(BoardStepCounter, ValidOnlyAfterOrderlyShutdownAndClearedBeforeMotion) {
   Rig r;
   r.boot();

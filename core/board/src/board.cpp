@@ -133,6 +133,11 @@ BootResult Board::boot() {
     r.start[i] = axis::start_position(&in_.encoder[i], {saved[i], p.step_counts_valid ? std::uint8_t{1} : std::uint8_t{0}},
                                       rev);
     axes_[i] = axis::initial_state(r.start[i]);
+    // An endstop active at power-up may be the switch the carriage rests on: it is latched
+    // like one seen while moving, so a bouncing Hall switch cannot let the first move run
+    // into it before the carriage has stepped away (docs/motion.md §4, G8).
+    axes_[i].latch_min = in_.endstop_min[i] != 0 ? 1 : 0;
+    axes_[i].latch_max = in_.endstop_max[i] != 0 ? 1 : 0;
   }
   return r;
 }

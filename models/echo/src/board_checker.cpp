@@ -30,6 +30,8 @@ Boot boot_facts(const board::Board& board, const board::Inputs& in, std::array<b
   for (std::size_t a = 0; a < kAxes; ++a) {
     b.homed[a] = in.encoder[a].valid != 0 || saved[a];
     b.pos[a] = board.axis_state(static_cast<board::Axis>(a)).pos;
+    b.endstop_min[a] = in.endstop_min[a] != 0;
+    b.endstop_max[a] = in.endstop_max[a] != 0;
   }
   return b;
 }

@@ -48,6 +48,8 @@ EchoModel::EchoModel(const Boot& boot) {
   for (std::size_t a = 0; a < kAxes; ++a) {
     ax_[a].homed = boot.homed[a];
     ax_[a].last.pos = boot.pos[a];
+    ax_[a].latch_min = boot.endstop_min[a];
+    ax_[a].latch_max = boot.endstop_max[a];
   }
 }
 

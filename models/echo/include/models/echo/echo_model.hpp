@@ -74,6 +74,9 @@ struct FrameEvent {
 struct Boot {
   std::array<bool, kAxes> homed{};  // a valid encoder reading (or saved counter) seeded the counter
   std::array<std::int32_t, kAxes> pos{};  // the step counters after boot (observed, usteps)
+  // Endstops active when the board sampled its inputs at boot: latched (motion.md §4, G8).
+  std::array<bool, kAxes> endstop_min{};
+  std::array<bool, kAxes> endstop_max{};
 };
 
 struct ExpectedAxis {
