@@ -308,8 +308,8 @@ struct Harness {
   void frame_op(Reader& r) {
     frame::CommandFrame f;
     f.seq = static_cast<std::uint16_t>(++rig->seq % codec::kSeqModulo);
-    f.x = part_of(r.u8(), r.u16());
-    f.y = part_of(r.u8(), r.u16());
+    f.x = axis_part(r);
+    f.y = axis_part(r);
     f.subs[0] = slot_of(r.u8());
     last_frame = wire_bytes(f);
     have_frame = true;
@@ -323,6 +323,15 @@ struct Harness {
     if (idle && b.counters().framer.accepted_frames != accepted + 1) {
       violation("an intact frame on an idle link was not accepted", -1, b.ticks());
     }
+  }
+
+  // The ID byte, then the two data bytes: one statement each, because the order in which
+  // function arguments are evaluated is unspecified (gcc and clang differ), and a script
+  // must decode the same in the dev (gcc) replay as in the clang fuzzer that found it.
+  static frame::AxisCommand axis_part(Reader& r) {
+    const std::uint8_t id = r.u8();
+    const std::uint16_t raw = r.u16();
+    return part_of(id, raw);
   }
 
   // One axis part. ID bytes 0xF0..0xFF give the IDs just past the command table
