@@ -54,13 +54,14 @@ using ap::board::test::Rig;
 namespace tmc = ap::core::tmc2130;
 
 // Work bounds per input, so one long script cannot stall the run (libFuzzer grows inputs up
-// to 4 KB; the gate passes no -max_len). 1 s of board time holds an acceleration to the fast
-// speed and the braking (0.5 s each with the default parameters) or a whole watchdog period
-// (0.3 s) after a jog; the states of a longer move (cruise, braking, arrival) are reached by
-// shorter ones. A reboot (ops 13 and 14)
-// costs as much as ~30 ticks, and mutated scripts were full of them (15 per input on
+// to 4 KB; the gate passes no -max_len). 0.6 s of board time holds a jog and the whole
+// watchdog period (0.3 s) that must end it, or an acceleration to the fast speed (0.5 s with
+// the default parameters); the states of a longer move (cruise, braking, arrival) are
+// reached by shorter ones. Measured: a 10 s gate-style run reaches every core/board and
+// core/axis branch the old 12,000-tick bound reached (fuzz/README.md). A reboot (ops 13
+// and 14) costs as much as ~30 ticks, and mutated scripts were full of them (15 per input on
 // average), while a fifth reboot in one script reaches no state the first four cannot.
-constexpr std::int64_t kMaxTicks = 1'000;
+constexpr std::int64_t kMaxTicks = 600;
 constexpr int kMaxReboots = 4;
 
 [[noreturn]] void violation(const char* what, int axis, std::uint32_t tick) {
