@@ -32,6 +32,7 @@
 #include "codec/layout.hpp"
 #include "codec/statuses.hpp"
 #include "core/frame/frames.hpp"
+#include "core/storage/parameters.hpp"
 
 namespace ap::model::echo {
 
@@ -74,6 +75,11 @@ struct FrameEvent {
 struct Boot {
   std::array<bool, kAxes> homed{};  // a valid encoder reading (or saved counter) seeded the counter
   std::array<std::int32_t, kAxes> pos{};  // the step counters after boot (observed, usteps)
+  // The parameter set in FRAM that the boot loads (docs/storage.md: the newest valid copy), as
+  // the caller knows it (e.g. read from the FRAM by a store of its own); nullopt: the
+  // defaults. A set that does not convert is replaced by the defaults and reported as fault
+  // 4000 (docs/board.md "Power-up").
+  std::optional<storage::ParameterSet> params;
 };
 
 struct ExpectedAxis {
