@@ -251,7 +251,21 @@ std::uint16_t SimBoard::expander_word() const {
   return w;
 }
 
-void SimBoard::sample(void* ctx, board::Inputs& in) { static_cast<SimBoard*>(ctx)->fill_inputs(in); }
+void SimBoard::sample(void* ctx, board::Inputs& in) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  s->fill_inputs(in);
+  s->sampled_ = in;
+  ++s->samples_;
+}
+
+namespace {
+// The inputs the echo model reads (models/echo env_of), field by field.
+bool same_env(const board::Inputs& a, const board::Inputs& b) {
+  return a.endstop_min == b.endstop_min && a.endstop_max == b.endstop_max && a.usb == b.usb && a.charger == b.charger &&
+         a.battery_mv == b.battery_mv && a.charge_ma == b.charge_ma && a.temperature_mc == b.temperature_mc &&
+         a.rotation_mdeg == b.rotation_mdeg && a.ble_status1 == b.ble_status1 && a.ble_status2 == b.ble_status2;
+}
+}  // namespace
 
 void SimBoard::motor(void* ctx, board::Axis ax, const board::MotorOutput& o) {
   auto* s = static_cast<SimBoard*>(ctx);
@@ -339,9 +353,14 @@ void SimBoard::tick() {
   for (std::size_t a = 0; a < board::kAxes; ++a) before_[a] = board_->axis_state(static_cast<board::Axis>(a));
   if (button_ && now_us_ >= button_until_us_) button_ = false;
   tick_echoes_.clear();
+  const std::uint64_t samples = samples_;
   board_->tick();
   for (auto& d : tmc_) d.clear_log();
   check_safety();
+  // The checker gives the model the inputs the core kept (board.inputs()): they must be the
+  // ones this tick's sample delivered, once per tick (docs/board.md "One cycle" step 1).
+  if (samples_ != samples + 1) echo_disagreement("the core sampled its inputs " + std::to_string(samples_ - samples) + " times in a tick");
+  if (!same_env(board_->inputs(), sampled_)) echo_disagreement("the core's inputs differ from what the hardware delivered");
   echoes_checked_ += tick_echoes_.size();
   for (const std::string& m : checker_->after_tick(tick_echoes_)) echo_disagreement(m);
   trace_tick();

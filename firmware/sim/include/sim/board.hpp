@@ -189,6 +189,8 @@ class SimBoard {
   std::unique_ptr<model::echo::BoardChecker> checker_;
   std::vector<model::echo::EchoBytes> tick_echoes_;   // what the core sent on TX in this tick
   std::vector<std::string> echo_bad_;
+  board::Inputs sampled_{};          // what the last sample() delivered
+  std::uint64_t samples_ = 0;
   std::uint64_t echo_bad_count_ = 0;
   std::uint64_t echoes_checked_ = 0;
   // Every echo the core sent, over all boots: the FNV-1a digest of the whole TX stream after
