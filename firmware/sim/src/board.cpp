@@ -161,6 +161,7 @@ void SimBoard::boot() {
   hw.sample = &SimBoard::sample;
   hw.motor = &SimBoard::motor;
   hw.uart_tx = &SimBoard::uart_tx;
+  checker_.reset();   // it refers to the board it was made for
   board_ = std::make_unique<board::Board>(hw);
   if (wave_) {
     // The encoders are read over SPI at power-up (eq. 7-2 seeds the step counters).
@@ -175,7 +176,22 @@ void SimBoard::boot() {
       (void)wave_->spi(kDevEncX + a, static_cast<std::uint64_t>(now_us_) * 1000U, mosi, miso);
     }
   }
+  // What this boot will load: the FRAM read by a store of its own over a copy of the chip
+  // (as `probe fram.NAME`), for the echo model's boot facts.
+  storage::ParameterSet stored;
+  {
+    model::Mb85rs256b copy = fram_;
+    storage::ParameterStore store(copy.bus());
+    (void)store.boot();
+    stored = store.current();
+  }
   (void)board_->boot();
+  // A fresh echo model per power-up: boot facts from what the board sampled at boot (the
+  // encoders, set by the carriage) and the stored parameters (docs/echo-model.md). Bytes still
+  // in the old core's receive ring died with it, so the model's link twin starts empty too.
+  model::echo::Boot facts = model::echo::boot_facts(*board_, board_->inputs(), {stored.step_counts_valid, stored.step_counts_valid});
+  facts.params = stored;
+  checker_ = std::make_unique<model::echo::BoardChecker>(*board_, facts);
   ++boots_;
   silent_ = axis::kLinkTimeoutTicks;
   dispatched_ = 0;
@@ -235,7 +251,21 @@ std::uint16_t SimBoard::expander_word() const {
   return w;
 }
 
-void SimBoard::sample(void* ctx, board::Inputs& in) { static_cast<SimBoard*>(ctx)->fill_inputs(in); }
+void SimBoard::sample(void* ctx, board::Inputs& in) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  s->fill_inputs(in);
+  s->sampled_ = in;
+  ++s->samples_;
+}
+
+namespace {
+// The inputs the echo model reads (models/echo env_of), field by field.
+bool same_env(const board::Inputs& a, const board::Inputs& b) {
+  return a.endstop_min == b.endstop_min && a.endstop_max == b.endstop_max && a.usb == b.usb && a.charger == b.charger &&
+         a.battery_mv == b.battery_mv && a.charge_ma == b.charge_ma && a.temperature_mc == b.temperature_mc &&
+         a.rotation_mdeg == b.rotation_mdeg && a.ble_status1 == b.ble_status1 && a.ble_status2 == b.ble_status2;
+}
+}  // namespace
 
 void SimBoard::motor(void* ctx, board::Axis ax, const board::MotorOutput& o) {
   auto* s = static_cast<SimBoard*>(ctx);
@@ -269,6 +299,15 @@ void SimBoard::motor(void* ctx, board::Axis ax, const board::MotorOutput& o) {
 void SimBoard::uart_tx(void* ctx, std::span<const std::uint8_t> bytes) {
   auto* s = static_cast<SimBoard*>(ctx);
   s->tx_.insert(s->tx_.end(), bytes.begin(), bytes.end());
+  s->echo_digests_.push_back(fnv1a(s->echo_digests_.empty() ? kFnvBasis : s->echo_digests_.back(), bytes));
+  if (bytes.size() == codec::kEchoLength) {
+    model::echo::EchoBytes e{};
+    std::copy(bytes.begin(), bytes.end(), e.begin());
+    s->tick_echoes_.push_back(e);
+  } else {
+    s->echo_disagreement("a TX write of " + std::to_string(bytes.size()) + " bytes, not one " +
+                         std::to_string(codec::kEchoLength) + "-byte echo");
+  }
   if (s->wave_) {
     (void)s->wave_->uart(wf::BoardWaveforms::Uart::tx, static_cast<std::uint64_t>(s->ticks_) * kNsPerTick + 500'000U,
                          bytes);
@@ -313,9 +352,17 @@ void SimBoard::advance_to(std::int64_t t_us) {
 void SimBoard::tick() {
   for (std::size_t a = 0; a < board::kAxes; ++a) before_[a] = board_->axis_state(static_cast<board::Axis>(a));
   if (button_ && now_us_ >= button_until_us_) button_ = false;
+  tick_echoes_.clear();
+  const std::uint64_t samples = samples_;
   board_->tick();
   for (auto& d : tmc_) d.clear_log();
   check_safety();
+  // The checker gives the model the inputs the core kept (board.inputs()): they must be the
+  // ones this tick's sample delivered, once per tick (docs/board.md "One cycle" step 1).
+  if (samples_ != samples + 1) echo_disagreement("the core sampled its inputs " + std::to_string(samples_ - samples) + " times in a tick");
+  if (!same_env(board_->inputs(), sampled_)) echo_disagreement("the core's inputs differ from what the hardware delivered");
+  echoes_checked_ += tick_echoes_.size();
+  for (const std::string& m : checker_->after_tick(tick_echoes_)) echo_disagreement(m);
   trace_tick();
   const std::uint16_t w = expander_word();
   if (w != expander_last_ && wave_) {
@@ -328,6 +375,13 @@ void SimBoard::tick() {
   ++ticks_;
   now_us_ = static_cast<std::int64_t>(ticks_) * axis::kTickUs;
   if (wave_ && ticks_ % 100 == 0) wave_->flush(ticks_ * static_cast<std::uint64_t>(kNsPerTick));
+}
+
+void SimBoard::echo_disagreement(const std::string& what) {
+  ++echo_bad_count_;
+  if (echo_bad_.size() < 20) {
+    echo_bad_.push_back("at " + std::to_string(ticks_ + 1) + " ms (boot " + std::to_string(boots_) + "): " + what);
+  }
 }
 
 void SimBoard::check_safety() {
@@ -403,6 +457,7 @@ void SimBoard::trace_tick() {
 void SimBoard::rx(std::span<const std::uint8_t> bytes) {
   if (!board_) boot();
   board_->uart_rx(bytes);
+  checker_->rx(bytes);
   if (wave_) (void)wave_->uart(wf::BoardWaveforms::Uart::rx, static_cast<std::uint64_t>(now_us_) * 1000U, bytes);
 }
 
@@ -463,6 +518,29 @@ std::string SimBoard::probe(const std::string& subject) {
       s += " first at " + std::to_string(v.t_us) + " us, axis " + std::to_string(v.axis) + ": " + v.what;
     }
     return s;
+  }
+  if (subject == "echo_model") {
+    // "CHECKED BAD": echoes compared with the model, disagreements.
+    return std::to_string(echoes_checked_) + " " + std::to_string(echo_bad_count_);
+  }
+  if (subject.rfind("echo_model.", 0) == 0) {
+    // echo_model.K.OFF: 100 characters of the K-th kept disagreement from OFF (a bus reply
+    // carries at most dds::kFrameMax bytes), empty past its end.
+    const std::string rest = subject.substr(11);
+    const std::size_t dot = rest.find('.');
+    if (dot == std::string::npos) throw std::invalid_argument("probe echo_model.K.OFF");
+    const auto k = static_cast<std::size_t>(to_int(rest.substr(0, dot)));
+    const auto off = static_cast<std::size_t>(to_int(rest.substr(dot + 1)));
+    if (k >= echo_bad_.size()) throw std::invalid_argument("no disagreement " + rest.substr(0, dot));
+    return off < echo_bad_[k].size() ? echo_bad_[k].substr(off, 100) : std::string();
+  }
+  if (subject.rfind("echo_sent.", 0) == 0) {
+    // echo_sent.N: "TOTAL DIGEST_N QUEUED": echoes the core sent, the digest of the TX stream
+    // after the first N of them, and the echoes still waiting in the TX queue.
+    const auto n = static_cast<std::size_t>(to_int(subject.substr(10)));
+    if (n > echo_digests_.size()) throw std::invalid_argument("only " + std::to_string(echo_digests_.size()) + " echoes sent");
+    return std::to_string(echo_digests_.size()) + " " + std::to_string(n == 0 ? kFnvBasis : echo_digests_[n - 1]) + " " +
+           std::to_string(tx_.size() / codec::kEchoLength);
   }
   if (subject == "carriage.x" || subject == "carriage.y") {
     return std::to_string(static_cast<long long>(std::llround(carriage_um_[axis_of(subject.substr(9))])));

@@ -104,6 +104,16 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
+// What the link did to one frame, carried with it (the PC's echo check, docs/sim.md "Echo
+// checks"): `index` is given by the PC when the frame enters the link (the board's echo number),
+// the rest is the injector's own record.
+struct FrameTag {
+  std::uint64_t index = 0;
+  std::uint32_t corruptions = 0;   // bytes XORed on purpose
+  bool duplicate = false;          // the second copy of a duplicated frame
+  bool reordered = false;          // held and sent after the next frame
+};
+
 class FaultLink {
  public:
   FaultLink(const std::vector<sc::Fault>& faults, sc::Direction dir, std::uint64_t seed) : rng_(seed) {
@@ -115,8 +125,9 @@ class FaultLink {
   [[nodiscard]] bool cut(std::int64_t t) const { return t < cut_until_; }
 
   // One frame entering the link at t.
-  void push(std::int64_t t, Bytes frame, LinkStats& st) {
+  void push(std::int64_t t, Bytes frame, LinkStats& st, std::uint64_t index = 0) {
     ++st.frames;
+    FrameTag tag{index, 0, false, false};
     if (cut(t)) {
       ++st.cut;
       return;
@@ -140,6 +151,7 @@ class FaultLink {
             std::uniform_int_distribution<int> mask(1, 255);
             frame[pos(rng_)] ^= static_cast<std::uint8_t>(mask(rng_));
             ++st.corrupted;
+            ++tag.corruptions;
           }
           break;
         case sc::FaultKind::duplicate:
@@ -161,30 +173,39 @@ class FaultLink {
       }
     }
     if (reorder && !held_) {
-      held_ = std::make_pair(at, std::move(frame));
+      tag.reordered = true;
+      held_ = Held{at, std::move(frame), tag};
       ++st.reordered;
       return;
     }
-    queue_.emplace_back(at, frame);
+    queue_.push_back({at, frame, tag});
     if (dup) {
-      queue_.emplace_back(at, frame);
+      FrameTag copy = tag;
+      copy.duplicate = true;
+      queue_.push_back({at, frame, copy});
       ++st.duplicated;
     }
     if (held_) {   // the held frame goes out right after the one that overtook it
-      queue_.emplace_back(std::max(at, held_->first), std::move(held_->second));
+      held_->at = std::max(at, held_->at);
+      queue_.push_back(std::move(*held_));
       held_.reset();
     }
   }
 
+  // Frames still inside the link (queued or held).
+  [[nodiscard]] std::size_t in_flight() const { return queue_.size() + (held_ ? 1U : 0U); }
+
   // Frames that leave the link by t, in order, at most max_bytes (the rest wait).
-  Bytes pop(std::int64_t t, std::size_t max_bytes, LinkStats& st) {
+  // `tags` (optional) receives the tag of each delivered frame, in order.
+  Bytes pop(std::int64_t t, std::size_t max_bytes, LinkStats& st, std::vector<FrameTag>* tags = nullptr) {
     Bytes out;
-    std::stable_sort(queue_.begin(), queue_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    while (!queue_.empty() && queue_.front().first <= t && out.size() + queue_.front().second.size() <= max_bytes) {
+    std::stable_sort(queue_.begin(), queue_.end(), [](const Held& a, const Held& b) { return a.at < b.at; });
+    while (!queue_.empty() && queue_.front().at <= t && out.size() + queue_.front().bytes.size() <= max_bytes) {
       if (cut(t)) {
         ++st.cut;
       } else {
-        out.insert(out.end(), queue_.front().second.begin(), queue_.front().second.end());
+        out.insert(out.end(), queue_.front().bytes.begin(), queue_.front().bytes.end());
+        if (tags != nullptr) tags->push_back(queue_.front().tag);
         ++st.delivered;
       }
       queue_.pop_front();
@@ -195,9 +216,14 @@ class FaultLink {
  private:
   bool roll(double p) { return p > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < p; }
   std::vector<sc::Fault> faults_;
+  struct Held {
+    std::int64_t at;
+    Bytes bytes;
+    FrameTag tag;
+  };
   std::mt19937_64 rng_;
-  std::deque<std::pair<std::int64_t, Bytes>> queue_;
-  std::optional<std::pair<std::int64_t, Bytes>> held_;
+  std::deque<Held> queue_;
+  std::optional<Held> held_;
   std::int64_t cut_until_ = -1;
 };
 
@@ -230,6 +256,14 @@ struct BoardPc {
   BoardVerdict verdict;
   std::vector<bool> done;   // per expectation: settled (by/at)
   std::uint64_t cmd_seq = 0;
+  // The echo check of the PC side (docs/sim.md "Echo checks"): every echo the bus brought
+  // from the board, in order (with the FNV-1a digest of that stream), which of them reached
+  // the client through the link, and the index of the last one delivered.
+  std::vector<Bytes> from_board;
+  std::uint64_t from_board_digest = kFnvBasis;
+  std::vector<bool> delivered;
+  std::optional<std::uint64_t> last_index;
+  std::uint32_t link_failures = 0;
 };
 
 struct Mech {
@@ -551,13 +585,56 @@ class Pc {
       }
       b.tel = e.telemetry;
       b.have_tel = true;
-      for (std::size_t k = 0; k + codec::kEchoLength <= e.bytes.size(); k += codec::kEchoLength) {
-        b.up->push(t, Bytes(e.bytes.begin() + static_cast<std::ptrdiff_t>(k),
-                            e.bytes.begin() + static_cast<std::ptrdiff_t>(k + codec::kEchoLength)),
-                   b.verdict.to_pc);
+      if (e.bytes.size() % codec::kEchoLength != 0) {
+        fail("echo check: board " + std::to_string(b.id) + " at " + tstr(t) + ": the bus brought " +
+             std::to_string(e.bytes.size()) + " TX bytes, not whole echoes");
       }
-      const Bytes in = b.up->pop(t, 64 * codec::kEchoLength, b.verdict.to_pc);
+      for (std::size_t k = 0; k + codec::kEchoLength <= e.bytes.size(); k += codec::kEchoLength) {
+        Bytes echo(e.bytes.begin() + static_cast<std::ptrdiff_t>(k),
+                   e.bytes.begin() + static_cast<std::ptrdiff_t>(k + codec::kEchoLength));
+        b.from_board_digest = fnv1a(b.from_board_digest, echo);
+        b.from_board.push_back(echo);
+        b.delivered.push_back(false);
+        b.up->push(t, std::move(echo), b.verdict.to_pc, b.from_board.size() - 1);
+      }
+      std::vector<FrameTag> tags;
+      const Bytes in = b.up->pop(t, 64 * codec::kEchoLength, b.verdict.to_pc, &tags);
+      check_delivered(b, in, tags, t);
       if (!in.empty()) receive(b, in, t);
+    }
+  }
+
+  // ---- the echoes that reached the client are ones the board sent, in order -------------
+  void check_delivered(BoardPc& b, const Bytes& in, const std::vector<FrameTag>& tags, std::int64_t t) {
+    auto bad = [&](const std::string& what) {
+      if (++b.link_failures <= 5) fail("echo check: board " + std::to_string(b.id) + " at " + tstr(t) + ": " + what);
+    };
+    if (in.size() != tags.size() * codec::kEchoLength) {
+      bad(std::to_string(in.size()) + " bytes left the link for " + std::to_string(tags.size()) + " echoes");
+      return;
+    }
+    for (std::size_t k = 0; k < tags.size(); ++k) {
+      const FrameTag& g = tags[k];
+      const std::string n = "echo #" + std::to_string(g.index);
+      if (g.index >= b.from_board.size()) {
+        bad(n + " left the link but the board never sent it");
+        continue;
+      }
+      const Bytes& sent = b.from_board[g.index];
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < codec::kEchoLength; ++i) differ += in[k * codec::kEchoLength + i] != sent[i] ? 1U : 0U;
+      // Not corrupted: byte-identical. Corrupted on purpose: one byte per corruption (two
+      // corruptions may hit the same byte, and only then can masks cancel).
+      if (g.corruptions == 0 && differ != 0) bad(n + " differs from what the board sent in " + std::to_string(differ) + " bytes");
+      if (g.corruptions == 1 && differ != 1) bad(n + " corrupted once by the link but differs in " + std::to_string(differ) + " bytes");
+      if (g.corruptions > 1 && differ > g.corruptions) bad(n + " differs in more bytes than the link corrupted");
+      // Order: each echo after the last one delivered, except the second copy of a duplicate
+      // (the same one again) and a frame the link held back on purpose (reordered).
+      if (b.last_index && g.index <= *b.last_index && !(g.duplicate && g.index == *b.last_index) && !g.reordered) {
+        bad(n + " arrived after echo #" + std::to_string(*b.last_index) + " (out of order, no reorder or duplicate fault)");
+      }
+      if (!g.reordered && (!b.last_index || g.index > *b.last_index)) b.last_index = g.index;
+      b.delivered[g.index] = true;
     }
   }
 
@@ -806,6 +883,7 @@ class Pc {
       const std::string viol = env(b, "probe violations", t);
       if (!viol.empty() && viol[0] != '0') fail("safety (board-side monitor, every tick): board " + std::to_string(b.id) + ": " + viol);
       b.verdict.lost_step_risks = static_cast<std::uint64_t>(std::stoull(env(b, "probe lost_steps", t)));
+      finish_echo_checks(b, t);
       const client::ClientCounters& c = b.client.counters();
       b.verdict.commands = c.sent;
       b.verdict.echoes = c.matched;
@@ -819,6 +897,51 @@ class Pc {
     for (auto& bp : boards_) {
       const std::uint64_t seq = bp->ep->send({}, static_cast<std::uint64_t>(t), dds::kFlagShutdown);
       (void)wait_echo(*bp, seq);
+    }
+  }
+
+  // The board-side echo model (every echo the core sent, docs/sim.md) and the PC-side
+  // accounting of the echoes: the bus carried the board's TX stream exactly, and the link
+  // lost no more of it than it says.
+  void finish_echo_checks(BoardPc& b, std::int64_t t) {
+    const std::string who = "board " + std::to_string(b.id);
+    std::istringstream em(env(b, "probe echo_model", t));
+    std::uint64_t checked = 0, disagreements = 0;
+    if (!(em >> checked >> disagreements)) {
+      fail("echo model: " + who + ": no answer to probe echo_model");
+    } else {
+      b.verdict.echoes_model_checked = checked;
+      b.verdict.echo_disagreements = disagreements;
+      for (std::uint64_t k = 0; k < std::min<std::uint64_t>(disagreements, 3); ++k) {
+        std::string text;
+        for (std::size_t off = 0; off < 2000; off += 100) {
+          const std::string part = env(b, "probe echo_model." + std::to_string(k) + "." + std::to_string(off), t);
+          if (part.empty()) break;
+          text += part;
+        }
+        fail("echo model (board-side, every echo): " + who + ": " + text);
+      }
+      if (disagreements > 3) fail("echo model: " + who + ": " + std::to_string(disagreements - 3) + " more disagreements");
+    }
+    std::istringstream es(env(b, "probe echo_sent." + std::to_string(b.from_board.size()), t));
+    std::uint64_t total = 0, digest = 0, queued = 0;
+    if (!(es >> total >> digest >> queued)) {
+      fail("echo check: " + who + ": the board sent fewer echoes than the bus brought (" +
+           std::to_string(b.from_board.size()) + ")");
+    } else {
+      if (digest != b.from_board_digest) fail("echo check: " + who + ": the echoes the bus brought are not the board's TX stream");
+      if (total != b.from_board.size() + queued) {
+        fail("echo check: " + who + ": the board sent " + std::to_string(total) + " echoes, the bus brought " +
+             std::to_string(b.from_board.size()) + " and " + std::to_string(queued) + " wait in its TX queue");
+      }
+    }
+    const auto missing = static_cast<std::uint64_t>(std::count(b.delivered.begin(), b.delivered.end(), false));
+    const LinkStats& up = b.verdict.to_pc;
+    const std::uint64_t accounted = up.dropped + up.cut + b.up->in_flight();
+    b.verdict.echoes_from_board = b.from_board.size();
+    if (missing > accounted) {
+      fail("echo check: " + who + ": " + std::to_string(missing) + " echoes the board sent never reached the PC; the link " +
+           "dropped, cut or still holds " + std::to_string(accounted));
     }
   }
 
@@ -907,6 +1030,8 @@ std::string format_report(const sc::Scenario& s, const RunResult& r) {
     o << "  board " << b.board << ": commands " << b.commands << ", echoes " << b.echoes << ", gaps (lost echoes) "
       << b.lost << ", rejected " << b.rejected << ", malformed " << b.malformed << ", lost-step risks "
       << b.lost_step_risks << '\n';
+    o << "    echo model: " << b.echoes_model_checked << " echoes checked, " << b.echo_disagreements
+      << " disagreements; echoes from the board " << b.echoes_from_board << '\n';
     o << "    to board: frames " << b.to_board.frames << ", dropped " << b.to_board.dropped << ", corrupted "
       << b.to_board.corrupted << ", duplicated " << b.to_board.duplicated << ", reordered " << b.to_board.reordered
       << ", delayed " << b.to_board.delayed << ", cut " << b.to_board.cut << '\n';

@@ -23,6 +23,7 @@ constexpr std::int64_t kPosMax = 1'000'000'000;    // usteps
 constexpr std::uint32_t kWatchdogTicks = 300;
 // docs/board.md G23.
 constexpr std::int32_t kBatteryHysteresisMv = 100;
+constexpr std::int32_t kFaultBadParams = 4000;   // docs/board.md "Power-up": defaults used
 
 std::string status_name(EchoStatus s) {
   const auto* info = codec::find_status(static_cast<std::uint32_t>(s));
@@ -50,6 +51,30 @@ EchoModel::EchoModel(const Boot& boot) {
     ax_[a].last.pos = boot.pos[a];
     ax_[a].latch_min = boot.endstop_min[a];
     ax_[a].latch_max = boot.endstop_max[a];
+  }
+  if (boot.params) {
+    const storage::ParameterSet& f = *boot.params;
+    Params n = p_;
+    n.accel = static_cast<std::int32_t>(f.max_acceleration_um_s2);
+    n.fast = static_cast<std::int32_t>(f.fast_speed_um_s);
+    n.slow = static_cast<std::int32_t>(f.slow_speed_um_s);
+    n.start = static_cast<std::int32_t>(f.start_speed_um_s);
+    n.homing = static_cast<std::int32_t>(f.homing_speed_um_s);
+    n.pitch = static_cast<std::int32_t>(f.lead_pitch_um);
+    n.steps = f.steps_per_rev;
+    n.micro = f.microsteps;
+    n.irun = f.run_current_cs;
+    n.ihold = f.hold_current_cs;
+    n.soft_min = {f.soft_min_x_um, f.soft_min_y_um};
+    n.soft_max = {f.soft_max_x_um, f.soft_max_y_um};
+    n.home_offset = {f.home_offset_x_um, f.home_offset_y_um};
+    n.low_battery = f.low_battery_mv;
+    std::string why;
+    if (converts(n, why)) {
+      p_ = n;
+    } else {
+      fault_ = kFaultBadParams;
+    }
   }
 }
 

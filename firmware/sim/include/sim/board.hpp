@@ -24,6 +24,7 @@
 
 #include "core/axis/watchdog.hpp"
 #include "core/board/board.hpp"
+#include "models/echo/board_checker.hpp"
 #include "models/fram/mb85rs256b.hpp"
 #include "models/tmc2130/device.hpp"
 #include "ap/model/mechanics.hpp"
@@ -57,6 +58,13 @@ enum class Ble : std::uint8_t { Shutdown, Standby, Connected, Session };
 // LED colours (bits 0..2 = R, G, B) and blink (bits 4..5: 0 steady, 1 slow, 2 fast), Tab. 7-4.
 std::uint8_t led_code(const board::Board& b, Ble ble);
 std::string led_word(std::uint8_t code);   // "red_fast", "blue", ...
+
+// FNV-1a 64 (offset basis, prime): a digest of a byte stream, extended byte by byte.
+inline constexpr std::uint64_t kFnvBasis = 0xcbf29ce484222325ULL;
+constexpr std::uint64_t fnv1a(std::uint64_t h, std::span<const std::uint8_t> bytes) {
+  for (const std::uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ULL;
+  return h;
+}
 
 struct Violation {
   std::int64_t t_us;
@@ -96,6 +104,15 @@ class SimBoard {
   // Lost-step risks per axis from the mechanics model over all STEP edges so far.
   [[nodiscard]] std::size_t lost_step_risks(std::size_t a);
   [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
+  // The echo reference model (models/echo) run beside the board core on every tick: the
+  // disagreements found so far (at most 20 kept), how many there were and how many echoes
+  // were compared. A fresh checker with fresh boot facts follows every boot (docs/sim.md).
+  [[nodiscard]] const std::vector<std::string>& echo_disagreements() const { return echo_bad_; }
+  [[nodiscard]] std::uint64_t echo_disagreement_count() const { return echo_bad_count_; }
+  [[nodiscard]] std::uint64_t echoes_checked() const { return echoes_checked_; }
+  // Every echo the core sent on TX (all boots): count and FNV-1a 64 digest of the bytes in
+  // order, for the PC's check that the bus delivered exactly these (probe `echo_sent`).
+  [[nodiscard]] std::uint64_t echoes_sent() const { return echo_digests_.size(); }
 
  private:
   struct AxisRec {
@@ -113,6 +130,7 @@ class SimBoard {
   void tick();
   void fill_inputs(board::Inputs& in);
   void check_safety();
+  void echo_disagreement(const std::string& what);
   void trace_tick();
   std::uint16_t expander_word() const;
   std::string probe(const std::string& subject);
@@ -166,6 +184,18 @@ class SimBoard {
   std::vector<std::pair<std::string, std::int64_t>> preboot_params_;
   std::uint32_t silent_ = axis::kLinkTimeoutTicks;
   std::uint32_t dispatched_ = 0;
+
+  // Echo model check.
+  std::unique_ptr<model::echo::BoardChecker> checker_;
+  std::vector<model::echo::EchoBytes> tick_echoes_;   // what the core sent on TX in this tick
+  std::vector<std::string> echo_bad_;
+  board::Inputs sampled_{};          // what the last sample() delivered
+  std::uint64_t samples_ = 0;
+  std::uint64_t echo_bad_count_ = 0;
+  std::uint64_t echoes_checked_ = 0;
+  // Every echo the core sent, over all boots: the FNV-1a digest of the whole TX stream after
+  // each of them (docs/sim.md "Echo checks").
+  std::vector<std::uint64_t> echo_digests_;
 };
 
 }  // namespace ap::sim

@@ -54,6 +54,8 @@ struct BoardVerdict {
   std::vector<GapRun> gaps;
   LinkStats to_board, to_pc;
   std::uint64_t lost_step_risks = 0;
+  std::uint64_t echoes_model_checked = 0, echo_disagreements = 0;   // board side (models/echo)
+  std::uint64_t echoes_from_board = 0;                              // echoes the bus brought
 };
 
 struct RunResult {

@@ -32,6 +32,7 @@
 #include "codec/layout.hpp"
 #include "codec/statuses.hpp"
 #include "core/frame/frames.hpp"
+#include "core/storage/parameters.hpp"
 
 namespace ap::model::echo {
 
@@ -77,6 +78,11 @@ struct Boot {
   // Endstops active when the board sampled its inputs at boot: latched (motion.md §4, G8).
   std::array<bool, kAxes> endstop_min{};
   std::array<bool, kAxes> endstop_max{};
+  // The parameter set in FRAM that the boot loads (docs/storage.md: the newest valid copy), as
+  // the caller knows it (e.g. read from the FRAM by a store of its own); nullopt: the
+  // defaults. A set that does not convert is replaced by the defaults and reported as fault
+  // 4000 (docs/board.md "Power-up").
+  std::optional<storage::ParameterSet> params;
 };
 
 struct ExpectedAxis {
