@@ -32,7 +32,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <span>
+#include <string>
 
 #include "board_rig.hpp"
 #include "codec/commands.hpp"
@@ -40,7 +42,9 @@
 #include "codec/subscribers.hpp"
 #include "core/axis/watchdog.hpp"
 #include "core/frame/fields.hpp"
+#include "core/storage/store.hpp"
 #include "core/tmc2130/fields.hpp"
+#include "models/echo/board_checker.hpp"
 #include "../script_reader.hpp"
 
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size)
@@ -66,6 +70,11 @@ constexpr int kMaxReboots = 4;
 
 [[noreturn]] void violation(const char* what, int axis, std::uint32_t tick) {
   std::fprintf(stderr, "board fuzz: safety property violated: %s (axis %d, tick %u)\n", what, axis, tick);
+  std::abort();
+}
+
+[[noreturn]] void echo_disagrees(const std::string& what, std::uint32_t tick) {
+  std::fprintf(stderr, "board fuzz: echo disagrees with the reference model (models/echo): %s (tick %u)\n", what.c_str(), tick);
   std::abort();
 }
 
@@ -143,8 +152,26 @@ struct Harness {
   std::array<std::uint8_t, codec::kCommandLength> last_frame{};
   bool have_frame = false;
 
+  // The reference model of every echo (docs/echo-model.md), one per power-up: it is told the
+  // bytes the UART received and compares each echo the board sends with its prediction.
+  std::optional<model::echo::BoardChecker> checker;
+  bool power_dies_this_tick = false;
+
   void reboot() {
+    // What this boot loads, read by a store of its own over a copy of the chip (the model's
+    // boot facts; the storage tests verify the store itself).
+    storage::ParameterSet stored;
+    {
+      model::Mb85rs256b copy = rig->fram;
+      storage::ParameterStore store(copy.bus());
+      (void)store.boot();
+      stored = store.current();
+    }
     (void)rig->boot();
+    model::echo::Boot facts =
+        model::echo::boot_facts(*rig->board, rig->in, {stored.step_counts_valid, stored.step_counts_valid});
+    facts.params = stored;
+    checker.emplace(*rig->board, facts);
     for (std::size_t a = 0; a < kAxes; ++a) {
       w[a] = AxisWatch{};
       w[a].latch_min = rig->in.endstop_min[a] != 0;
@@ -157,13 +184,27 @@ struct Harness {
 
   bool budget_left() const { return ticks < kMaxTicks; }
 
+  // Bytes into the board's UART, and the same bytes to the reference model's link twin.
+  void send_raw(std::span<const std::uint8_t> bytes) {
+    rig->send_raw(bytes);
+    checker->rx(bytes);
+  }
+
   // One control tick, then every per-tick oracle.
   void tick() {
     ++ticks;
     Board& b = *rig->board;
     const std::array<axis::State, kAxes> before{b.axis_state(Axis::X), b.axis_state(Axis::Y)};
     const axis::Mechanics mech = b.mechanics();
+    const std::size_t sent_before = rig->tx.size();
     rig->tick();
+    // Every echo of the tick against the model; not in the tick the power dies in (that echo
+    // never leaves the board, and the model is replaced at the next power-up).
+    if (!power_dies_this_tick) {
+      const std::span<const model::echo::EchoBytes> sent(rig->tx.data() + sent_before, rig->tx.size() - sent_before);
+      for (const std::string& m : checker->after_tick(sent)) echo_disagrees(m, b.ticks());
+    }
+    power_dies_this_tick = false;
     const std::uint32_t d = b.counters().dispatched_frames;
     silent = d != dispatched ? 0 : silent + 1;
     dispatched = d;
@@ -283,7 +324,7 @@ struct Harness {
   // the board has settled.
   void wait(std::int64_t n, bool keepalive) {
     for (std::int64_t i = 0; i < n && budget_left(); ++i) {
-      if (keepalive && have_frame && ticks % axis::kCommandPeriodTicks == 0) rig->send_raw(last_frame);
+      if (keepalive && have_frame && ticks % axis::kCommandPeriodTicks == 0) send_raw(last_frame);
       tick();
       if (!settled()) continue;
       if (kSettleCheck) confirm_settled(n - i - 1);
@@ -321,7 +362,7 @@ struct Harness {
     Board& b = *rig->board;
     const bool idle = b.rx_pending() == 0 && b.framer_pending() == 0;
     const std::uint32_t accepted = b.counters().framer.accepted_frames;
-    rig->send_raw(last_frame);
+    send_raw(last_frame);
     tick();
     if (idle && b.counters().framer.accepted_frames != accepted + 1) {
       violation("an intact frame on an idle link was not accepted", -1, b.ticks());
@@ -373,7 +414,7 @@ struct Harness {
     std::array<std::uint8_t, 64> chunk{};
     const std::size_t len = r.u8() % chunk.size();
     for (std::size_t i = 0; i < len; ++i) chunk[i] = r.u8();
-    rig->send_raw(std::span<const std::uint8_t>(chunk.data(), len));
+    send_raw(std::span<const std::uint8_t>(chunk.data(), len));
     tick();
   }
 
@@ -415,7 +456,8 @@ struct Harness {
     storage::ParameterSet intended = before;
     intended.max_acceleration_um_s2 = static_cast<std::uint32_t>(accel);
     rig->fram.arm_power_cut_after(cut);
-    rig->send(codec::CommandId::SetAccel, accel);
+    send_raw(Rig::bytes_of(Rig::frame_of(++rig->seq, codec::CommandId::SetAccel, accel, codec::CommandId::Nop, 0)));
+    power_dies_this_tick = true;
     tick();
     rig->fram.power_on();
     ++reboots;
