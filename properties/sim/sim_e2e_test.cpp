@@ -58,6 +58,11 @@ TEST_P(Bundled, Passes) {
   EXPECT_TRUE(r.pass);
   EXPECT_EQ(r.vtime_us, s.duration_us);
   EXPECT_EQ(r.boards.size(), s.boards);
+  // The echo checks ran (docs/sim.md "Echo checks"): the model saw every echo the bus brought.
+  for (const ap::sim::BoardVerdict& b : r.boards) {
+    EXPECT_GT(b.echoes_from_board, 0U) << "board " << b.board;
+    EXPECT_GE(b.echoes_model_checked, b.echoes_from_board) << "board " << b.board;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(SimScenario, Bundled, ::testing::ValuesIn(bundled()),
