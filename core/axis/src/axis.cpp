@@ -457,7 +457,11 @@ StepResult step(const State& s0, const Input& in, const Config& c) {
       out.step_speed = steps > 0 ? v_next : 0;
       if (hit_target || hit_bound) {
         if (s.mode == Mode::Position) {
-          s.mode = Mode::Idle;
+          // Only the target ends a move. A hard stop at the soft limit (a jog too fast to brake
+          // before it, retargeted this tick to a target behind the carriage) keeps the move: it
+          // starts toward its target from rest next tick instead of being dropped unreported
+          // (docs/echo-model.md).
+          if (hit_target) s.mode = Mode::Idle;
         } else if (s.mode == Mode::Home) {
           s.mode = Mode::Idle;
           out.error = Error::HomeFailed;

@@ -283,7 +283,10 @@ void Board::step_axes() {
     } else if (before.mode == axis::Mode::Jog && r.state.mode == axis::Mode::Idle && in.link_alive == 0 &&
                in.cmd.kind == axis::CmdKind::None) {
       event_[i] = AxisEvent::LinkLost;
-    } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && r.state.pos == before.target) {
+    } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && r.state.pos == before.target &&
+               !moving(r.state)) {
+      // Reached means standing at the target: a stop that ends a move while the carriage
+      // passes over its target still brakes beyond it, and stays STOPPED (docs/echo-model.md).
       event_[i] = AxisEvent::Reached;
     } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && !moving(before) &&
                in.cmd.kind == axis::CmdKind::None && in.blocked == 0) {
@@ -291,10 +294,18 @@ void Board::step_axes() {
       // whose way on is closed by an active or latched endstop: the axis core drops it (edge
       // I, motion.md §4), and the endstop is what ended it (docs/echo-model.md).
       event_[i] = AxisEvent::Endstop;
+    } else if (r.state.mode == axis::Mode::Position && !moving(r.state) && r.state.pos == r.state.target) {
+      // Standing on the target of a move: the axis core halted there this tick (at or below
+      // the start speed it may stop at once) and drops the finished move only on the next
+      // tick (edge I), but the echo of this tick already describes a carriage standing at its
+      // target: REACHED (docs/echo-model.md).
+      event_[i] = AxisEvent::Reached;
     } else if ((in.cmd.kind == axis::CmdKind::MoveAbs || in.cmd.kind == axis::CmdKind::MoveRel) &&
-               r.out.error == axis::Error::None && r.state.mode == axis::Mode::Idle && !moving(r.state)) {
+               r.out.error == axis::Error::None && r.state.mode == axis::Mode::Idle && !moving(r.state) &&
+               r.state.pos == r.state.target) {
       // A move to where the carriage already is: the requested position is reached
-      // (docs/echo-model.md), not "standing, no target".
+      // (docs/echo-model.md), not "standing, no target". Only there: a move the axis core
+      // dropped in the same tick (a jog stopping hard at its soft limit) reached nothing.
       event_[i] = AxisEvent::Reached;
     } else if ((before.mode == axis::Mode::Home || (in.cmd.kind == axis::CmdKind::Home && r.out.error == axis::Error::None)) &&
                r.state.mode == axis::Mode::Idle && r.state.homed != 0 && !moving(r.state)) {
@@ -556,7 +567,14 @@ HandlerStatus Board::set_parameter(Axis a, c::CommandId id, st::ParamId pid, std
   // At rest also means holding no motion: a jog held at its reversal stop or at a soft limit
   // steps again on the next tick, and the mechanics change below would drop its mode without
   // an event (docs/echo-model.md).
-  const auto holds = [this](std::size_t k) { return moving(axes_[k]) || axes_[k].mode != axis::Mode::Idle; };
+  // A move standing on its target is finished (REACHED; the axis core drops it on the next
+  // tick, edge I): it holds nothing.
+  const auto finished = [this](std::size_t k) {
+    return axes_[k].mode == axis::Mode::Position && axes_[k].pos == axes_[k].target;
+  };
+  const auto holds = [this, &finished](std::size_t k) {
+    return moving(axes_[k]) || (axes_[k].mode != axis::Mode::Idle && !finished(k));
+  };
   if (!currents && (holds(0) || holds(1) ||
                     (mechanics && (pending_motion(0) == Pending::Accepted || pending_motion(1) == Pending::Accepted)))) {
     return refuse(a, id);

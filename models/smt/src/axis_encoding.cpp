@@ -457,7 +457,8 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
   const z3::expr ee = is(gE);
   const z3::expr e_done = ee && (hit_t || hit_b);
   const z3::expr e_home = e_done && s.mode == L8(kHome);
-  n.mode = z3::ite(gh || x || (e_done && (s.mode == L8(kPosition) || s.mode == L8(kHome))), L8(kIdle), n.mode);
+  // A Position move ends at its target only; a hard stop at the soft limit keeps it (axis.cpp, edge E).
+  n.mode = z3::ite(gh || x || (ee && hit_t && s.mode == L8(kPosition)) || (e_done && s.mode == L8(kHome)), L8(kIdle), n.mode);
   o_err = z3::ite(e_home, L8(eHomeFailed), o_err);
   const z3::expr stopping = gh || x || ee;
   // default (B C D F J K L M N)
