@@ -444,8 +444,13 @@ Encoder::Result Encoder::step(const SymState& s0, const SymInput& in, const SymC
   // I
   const z3::expr i_pos = is(gI) && s.mode == L8(kPosition);
   const z3::expr i_home = is(gI) && !i_pos && s.mode == L8(kHome) && !estop;
+  // Standing in homing on an active (or latched) min switch is the reference point (axis.cpp
+  // edge I, motion.md §6, G19); otherwise the homing failed.
+  const z3::expr i_ref = i_home && endstop_active(s, m18);
   n.mode = z3::ite(i_pos || i_home, L8(kIdle), n.mode);
-  o_err = z3::ite(i_home, L8(eHomeFailed), o_err);
+  n.pos = z3::ite(i_ref, k.home_position, n.pos);
+  n.homed = z3::ite(i_ref, one8, n.homed);
+  o_err = z3::ite(i_home && !i_ref, L8(eHomeFailed), o_err);
   // G, H
   const z3::expr gh = is(gG) || is(gH);
   const z3::expr g_home = is(gG) && s.mode == L8(kHome);
