@@ -42,7 +42,6 @@
 #include "codec/subscribers.hpp"
 #include "core/axis/watchdog.hpp"
 #include "core/frame/fields.hpp"
-#include "core/storage/store.hpp"
 #include "core/tmc2130/fields.hpp"
 #include "models/echo/board_checker.hpp"
 #include "../script_reader.hpp"
@@ -158,19 +157,10 @@ struct Harness {
   bool power_dies_this_tick = false;
 
   void reboot() {
-    // What this boot loads, read by a store of its own over a copy of the chip (the model's
-    // boot facts; the storage tests verify the store itself).
-    storage::ParameterSet stored;
-    {
-      model::Mb85rs256b copy = rig->fram;
-      storage::ParameterStore store(copy.bus());
-      (void)store.boot();
-      stored = store.current();
-    }
+    // The model's boot facts include the set this boot loads, read before the board boots.
+    const storage::ParameterSet stored = model::echo::stored_set(rig->fram);
     (void)rig->boot();
-    model::echo::Boot facts =
-        model::echo::boot_facts(*rig->board, rig->in, {stored.step_counts_valid, stored.step_counts_valid});
-    facts.params = stored;
+    const model::echo::Boot facts = model::echo::boot_facts(*rig->board, rig->in, stored);
     checker.emplace(*rig->board, facts);
     for (std::size_t a = 0; a < kAxes; ++a) {
       w[a] = AxisWatch{};

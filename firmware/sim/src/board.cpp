@@ -176,21 +176,13 @@ void SimBoard::boot() {
       (void)wave_->spi(kDevEncX + a, static_cast<std::uint64_t>(now_us_) * 1000U, mosi, miso);
     }
   }
-  // What this boot will load: the FRAM read by a store of its own over a copy of the chip
-  // (as `probe fram.NAME`), for the echo model's boot facts.
-  storage::ParameterSet stored;
-  {
-    model::Mb85rs256b copy = fram_;
-    storage::ParameterStore store(copy.bus());
-    (void)store.boot();
-    stored = store.current();
-  }
+  // What this boot will load (as `probe fram.NAME`), for the echo model's boot facts.
+  const storage::ParameterSet stored = model::echo::stored_set(fram_);
   (void)board_->boot();
   // A fresh echo model per power-up: boot facts from what the board sampled at boot (the
   // encoders, set by the carriage) and the stored parameters (docs/echo-model.md). Bytes still
   // in the old core's receive ring died with it, so the model's link twin starts empty too.
-  model::echo::Boot facts = model::echo::boot_facts(*board_, board_->inputs(), {stored.step_counts_valid, stored.step_counts_valid});
-  facts.params = stored;
+  const model::echo::Boot facts = model::echo::boot_facts(*board_, board_->inputs(), stored);
   checker_ = std::make_unique<model::echo::BoardChecker>(*board_, facts);
   ++boots_;
   silent_ = axis::kLinkTimeoutTicks;
@@ -502,10 +494,7 @@ std::string SimBoard::probe(const std::string& subject) {
     const auto id = param_by_name(subject.substr(5));
     if (!id) throw std::invalid_argument("unknown parameter " + subject.substr(5));
     // What a fresh boot would load: a copy of the chip, read by a store of its own.
-    model::Mb85rs256b copy = fram_;
-    storage::ParameterStore store(copy.bus());
-    (void)store.boot();
-    return std::to_string(*storage::get_field(store.current(), *id));
+    return std::to_string(*storage::get_field(model::echo::stored_set(fram_), *id));
   }
   if (subject == "x.lost_steps" || subject == "y.lost_steps") return std::to_string(lost_step_risks(axis_of(subject.substr(0, 1))));
   if (subject == "lost_steps") return std::to_string(lost_step_risks(0) + lost_step_risks(1));

@@ -1,6 +1,7 @@
 #include "models/echo/board_checker.hpp"
 
 #include "core/frame/echo_codec.hpp"
+#include "core/storage/store.hpp"
 
 namespace ap::model::echo {
 
@@ -33,6 +34,18 @@ Boot boot_facts(const board::Board& board, const board::Inputs& in, std::array<b
     b.endstop_min[a] = in.endstop_min[a] != 0;
     b.endstop_max[a] = in.endstop_max[a] != 0;
   }
+  return b;
+}
+
+storage::ParameterSet stored_set(model::Mb85rs256b chip) {
+  storage::ParameterStore store(chip.bus());
+  (void)store.boot();
+  return store.current();
+}
+
+Boot boot_facts(const board::Board& board, const board::Inputs& in, const storage::ParameterSet& stored) {
+  Boot b = boot_facts(board, in, std::array<bool, kAxes>{stored.step_counts_valid, stored.step_counts_valid});
+  b.params = stored;
   return b;
 }
 

@@ -18,6 +18,8 @@
 #include "codec/layout.hpp"
 #include "core/board/board.hpp"
 #include "core/frame/stream_framer.hpp"
+#include "core/storage/parameters.hpp"
+#include "models/fram/mb85rs256b.hpp"
 #include "models/echo/echo_model.hpp"
 
 namespace ap::model::echo {
@@ -43,6 +45,13 @@ class LinkTwin {
 // counter is the other way, which the caller states).
 // The step counters are read from the booted board (an observation, like all positions).
 Boot boot_facts(const board::Board& b, const board::Inputs& at_boot, std::array<bool, kAxes> saved_counter_valid = {});
+
+// What a boot from this chip loads (docs/storage.md: the newest valid copy), read by a store
+// of its own over a copy of the chip; the storage tests verify the store itself.
+storage::ParameterSet stored_set(model::Mb85rs256b chip);
+
+// Boot facts with the parameter set the boot loaded (its saved step counters included).
+Boot boot_facts(const board::Board& b, const board::Inputs& at_boot, const storage::ParameterSet& stored);
 
 // Env and Motion from the board's observers (the sampled inputs; the axis core's phase and
 // step counter and this tick's motor output).
