@@ -195,7 +195,9 @@ struct Harness {
       for (const std::string& m : checker->after_tick(sent)) echo_disagrees(m, b.ticks());
     }
     power_dies_this_tick = false;
-    const std::uint32_t d = b.counters().dispatched_frames;
+    // Frames that feed the link watchdog (docs/protocol.md "Delivery"): run, or a repeat of
+    // the last one taken.
+    const std::uint32_t d = b.counters().dispatched_frames + b.counters().repeated_frames;
     silent = d != dispatched ? 0 : silent + 1;
     dispatched = d;
     const bool mech_changed = !same_mechanics(b.mechanics(), mech);

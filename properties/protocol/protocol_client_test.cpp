@@ -1,11 +1,13 @@
-// PC client: sequence numbers, lost / duplicated / rejected / unexpected echoes, and the
-// readable form used by `axisproof frame encode`.
+// PC client: delivery (docs/protocol.md "Delivery": one frame in flight, repeated until
+// answered, stop first, outcomes, the retry budget, renumbering) and the readable form used by
+// `axisproof frame encode`.
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "client/client.hpp"
 #include "client/readable.hpp"
+#include "core/frame/command_codec.hpp"
 #include "core/frame/echo_builder.hpp"
 
 namespace {
@@ -14,50 +16,231 @@ namespace f = ap::frame;
 namespace c = ap::codec;
 using ap::client::EchoKind;
 
-std::string echo_for(std::uint16_t seq) {
-  return *ap::client::format(f::EchoFrame{seq, {c::EchoStatus::Idle, 10}, {c::EchoStatus::Idle, 20}, {}});
+using ap::client::Client;
+using ap::client::Command;
+using ap::client::Outcome;
+using ap::client::Part;
+using C = c::CommandId;
+using S = c::EchoStatus;
+
+std::string echo_for(std::uint16_t seq, S x = S::Idle, std::int32_t xd = 10, S y = S::Idle, std::int32_t yd = 20) {
+  return *ap::client::format(f::EchoFrame{seq, {x, xd}, {y, yd}, {}});
 }
 
-TEST(ProtocolClient, NumbersCommandsAndWrapsAt1000) {
-  ap::client::Client cl;
-  for (int i = 0; i < 1001; ++i) ASSERT_TRUE(cl.next_command({}).has_value());
-  EXPECT_EQ(cl.next_seq(), 1);
-  EXPECT_EQ(cl.counters().sent, 1001U);
-  EXPECT_EQ(cl.in_flight().size(), ap::client::Client::kMaxInFlight);
-  EXPECT_EQ(cl.counters().lost, 1001U - ap::client::Client::kMaxInFlight);
+f::CommandFrame parsed(const std::string& bytes) {
+  f::CommandFrame fr;
+  EXPECT_TRUE(f::parse_command(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), fr).ok());
+  return fr;
 }
 
-TEST(ProtocolClient, DetectsLostDuplicatedRejectedUnexpectedAndMalformed) {
-  ap::client::Client cl;
-  for (int i = 0; i < 5; ++i) ASSERT_TRUE(cl.next_command({}).has_value());  // seqs 0..4
-  auto ev = cl.receive(echo_for(0) + echo_for(2) + echo_for(2) + echo_for(500));
-  ASSERT_EQ(ev.size(), 4U);
-  EXPECT_EQ(ev[0].kind, EchoKind::Matched);
-  EXPECT_TRUE(ev[0].lost.empty());
-  EXPECT_EQ(ev[1].kind, EchoKind::Matched);
-  EXPECT_EQ(ev[1].lost, (std::vector<std::uint16_t>{1}));
-  EXPECT_EQ(ev[2].kind, EchoKind::Duplicate);
-  EXPECT_EQ(ev[3].kind, EchoKind::Unexpected);
-  std::string corrupt = echo_for(3);
-  corrupt[10] = '7';
-  const auto rejected = *ap::client::format(f::build_rejection_echo(2, {c::FrameError::BadCrc, 36}));
-  ev = cl.receive(corrupt + rejected);
-  ASSERT_EQ(ev.size(), 2U);
-  EXPECT_EQ(ev[0].kind, EchoKind::Malformed);
-  EXPECT_EQ(ev[0].rejection.error, c::FrameError::BadCrc);
-  EXPECT_EQ(ev[1].kind, EchoKind::Rejected);
-  EXPECT_EQ(ev[1].rejection, (f::Rejection{c::FrameError::BadCrc, 36}));
-  ev = cl.receive(echo_for(4));
+constexpr std::int64_t ms = 1000;
+
+// docs/protocol.md "Delivery": 1..499 ahead is new, 0 ahead a repeat, 500..999 ahead older,
+// all mod 1000 (the values below are the document's, not the code's constants).
+TEST(ProtocolDelivery, SeqWindowAsDocumented) {
+  EXPECT_EQ(c::seq_order(5, 6), c::SeqOrder::New);
+  EXPECT_EQ(c::seq_order(5, 5), c::SeqOrder::Repeat);
+  EXPECT_EQ(c::seq_order(5, 4), c::SeqOrder::Older);
+  EXPECT_EQ(c::seq_order(999, 0), c::SeqOrder::New);     // the wrap
+  EXPECT_EQ(c::seq_order(998, 3), c::SeqOrder::New);
+  EXPECT_EQ(c::seq_order(0, 999), c::SeqOrder::Older);
+  EXPECT_EQ(c::seq_order(3, 998), c::SeqOrder::Older);
+  EXPECT_EQ(c::seq_order(0, 499), c::SeqOrder::New);
+  EXPECT_EQ(c::seq_order(0, 500), c::SeqOrder::Older);   // half the space: never both new and older
+  EXPECT_EQ(c::seq_order(600, 99), c::SeqOrder::New);
+  EXPECT_EQ(c::seq_order(600, 100), c::SeqOrder::Older);
+  EXPECT_EQ(c::seq_next(999), 0);
+}
+
+TEST(ProtocolDelivery, AFrameIsRepeatedByteForByteUntilItsAnswer) {
+  Client cl;
+  cl.submit({Part::X, {C::Goto, 20000}}, 0);
+  const auto first = cl.poll(0, {});
+  ASSERT_TRUE(first);
+  EXPECT_EQ(parsed(*first).x, (f::AxisCommand{C::Goto, 20000}));
+  EXPECT_EQ(parsed(*first).seq, 0);
+  EXPECT_FALSE(cl.poll(39 * ms, {}));            // the 40 ms retransmission timeout
+  const auto again = cl.poll(40 * ms, {});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(*again, *first);
+  EXPECT_TRUE(cl.take_reports().empty());
+  const auto ev = cl.receive(echo_for(0, S::Accelerating), 55 * ms);
   ASSERT_EQ(ev.size(), 1U);
-  EXPECT_EQ(ev[0].lost, (std::vector<std::uint16_t>{3}));
-  const auto& n = cl.counters();
-  EXPECT_EQ(n.matched, 3U);
-  EXPECT_EQ(n.lost, 2U);
-  EXPECT_EQ(n.duplicated, 1U);
-  EXPECT_EQ(n.unexpected, 1U);
-  EXPECT_EQ(n.rejected, 1U);
-  EXPECT_EQ(n.malformed, 1U);
-  EXPECT_TRUE(cl.in_flight().empty());
+  EXPECT_EQ(ev[0].kind, ap::client::EchoKind::Answer);
+  const auto reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 1U);
+  EXPECT_EQ(reps[0].outcome, Outcome::Done);
+  EXPECT_EQ(reps[0].transmissions, 2U);
+  EXPECT_EQ(reps[0].settled_us, 55 * ms);
+  EXPECT_EQ(cl.counters().retransmissions, 1U);
+  EXPECT_TRUE(cl.idle());
+}
+
+TEST(ProtocolDelivery, TheNextFrameWaitsForTheAnswerOfTheOneInFlight) {
+  Client cl;
+  cl.submit({Part::X, {C::Goto, 1000}}, 0);
+  cl.submit({Part::X, {C::Move, 500}}, 0);
+  const auto a = cl.poll(0, {});
+  ASSERT_TRUE(a);
+  const auto b = cl.poll(40 * ms, {});
+  ASSERT_TRUE(b);
+  EXPECT_EQ(*a, *b);                              // not the move: the goto is unanswered
+  cl.receive(echo_for(0), 45 * ms);
+  const auto n = cl.poll(45 * ms, {});
+  ASSERT_TRUE(n);
+  EXPECT_EQ(parsed(*n).seq, 1);
+  EXPECT_EQ(parsed(*n).x, (f::AxisCommand{C::Move, 500}));
+}
+
+TEST(ProtocolDelivery, ARejectionEchoIsNeverAnAnswerAndTriggersARepeatAtOnce) {
+  Client cl({.first_seq = 7});
+  cl.submit({Part::X, {C::Move, 500}}, 0);
+  ASSERT_TRUE(cl.poll(0, {}));
+  // The board's rejection carries the last seq it took: here even the frame's own.
+  for (const std::uint16_t seq : {std::uint16_t{6}, std::uint16_t{7}}) {
+    const auto rej = *ap::client::format(f::build_rejection_echo(seq, {c::FrameError::BadCrc, 36}));
+    const auto ev = cl.receive(rej, 5 * ms);
+    ASSERT_EQ(ev.size(), 1U);
+    EXPECT_EQ(ev[0].kind, ap::client::EchoKind::Rejected);
+    EXPECT_TRUE(cl.take_reports().empty());
+    EXPECT_TRUE(cl.poll(5 * ms, {}));              // sent again without waiting for the timeout
+  }
+  EXPECT_EQ(cl.counters().rejected, 2U);
+  EXPECT_FALSE(cl.idle());
+}
+
+TEST(ProtocolDelivery, AStopJumpsTheQueueAndCancelsTheEarlierMotionOfItsAxis) {
+  Client cl;
+  cl.submit({Part::X, {C::Goto, 1000}}, 0);
+  ASSERT_TRUE(cl.poll(0, {}));                    // in flight: left alone
+  const auto g2 = cl.submit({Part::X, {C::Goto, 9000}}, 1);
+  const auto mv = cl.submit({Part::X, {C::Move, 100}}, 2);
+  cl.submit({Part::Unit, {C::SetAccel, 30000}}, 3);
+  cl.submit({Part::Y, {C::Goto, 5000}}, 4);
+  cl.submit({Part::X, {C::Stop, 0}}, 5);
+  auto reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 2U);
+  EXPECT_EQ(reps[0].ticket, g2);
+  EXPECT_EQ(reps[0].outcome, Outcome::Superseded);
+  EXPECT_EQ(reps[1].ticket, mv);
+  EXPECT_EQ(reps[1].outcome, Outcome::Superseded);
+  EXPECT_FALSE(cl.poll(10 * ms, {}));             // the stop waits for the frame in flight ...
+  cl.receive(echo_for(0), 10 * ms);
+  const auto n = cl.poll(10 * ms, {});             // ... and goes in the very next one
+  ASSERT_TRUE(n);
+  EXPECT_EQ(parsed(*n).x, (f::AxisCommand{C::Stop, 0}));
+  EXPECT_EQ(parsed(*n).y, (f::AxisCommand{C::SetAccel, 30000}));  // behind it, in order
+  cl.receive(echo_for(1), 20 * ms);
+  const auto last = cl.poll(20 * ms, {});
+  ASSERT_TRUE(last);
+  EXPECT_EQ(parsed(*last).y, (f::AxisCommand{C::Goto, 5000}));
+}
+
+TEST(ProtocolDelivery, PacksAnXCommandWithTheNextYOrUnitCommandButNeverYBeforeX) {
+  Client cl;
+  cl.submit({Part::Y, {C::Goto, 1}}, 0);
+  cl.submit({Part::X, {C::Goto, 2}}, 0);
+  auto fr = parsed(*cl.poll(0, {}));
+  EXPECT_EQ(fr.y, (f::AxisCommand{C::Goto, 1}));
+  EXPECT_EQ(fr.x, (f::AxisCommand{}));            // X runs first on the board: not packed
+  cl.receive(echo_for(0), 1);
+  fr = parsed(*cl.poll(1, {}));
+  EXPECT_EQ(fr.x, (f::AxisCommand{C::Goto, 2}));
+}
+
+TEST(ProtocolDelivery, OutcomesComeFromTheStatusOfTheCommandsPart) {
+  Client cl;
+  cl.submit({Part::X, {C::Goto, 1000}}, 0);
+  cl.submit({Part::Y, {C::Home, 0}}, 0);
+  ASSERT_TRUE(cl.poll(0, {}));
+  cl.receive(echo_for(0, S::CommandRefused, static_cast<std::int32_t>(C::Goto), S::Homing, 0), 10 * ms);
+  auto reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 2U);
+  EXPECT_EQ(reps[0].outcome, Outcome::Refused);
+  EXPECT_EQ(reps[1].outcome, Outcome::Done);
+  cl.submit({Part::X, {C::Goto, 1000}}, 20 * ms);
+  ASSERT_TRUE(cl.poll(20 * ms, {}));
+  cl.receive(echo_for(1, S::BlockedCharger, 0, S::BlockedCharger, 0), 30 * ms);
+  reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 1U);
+  EXPECT_EQ(reps[0].outcome, Outcome::Blocked);
+  EXPECT_FALSE(ap::client::delivered(Outcome::Superseded));
+  EXPECT_TRUE(ap::client::delivered(Outcome::Blocked));
+}
+
+TEST(ProtocolDelivery, GivesUpAfterTheBudgetThenFailsCommandsUntilAProbeIsAnswered) {
+  Client cl({.retransmit_us = 40 * ms, .max_transmissions = 3, .keepalive_us = 100 * ms, .first_seq = 0});
+  cl.submit({Part::X, {C::Move, 500}}, 0);
+  cl.submit({Part::Y, {C::Move, 500}}, 0);  // packed with it
+  cl.submit({Part::X, {C::Goto, 9}}, 0);    // waits behind
+  for (const std::int64_t t : {0, 40, 80}) ASSERT_TRUE(cl.poll(t * ms, {})) << t;
+  EXPECT_FALSE(cl.link_down());
+  const auto probe = cl.poll(120 * ms, {});   // out of transmissions: given up, a probe goes out
+  ASSERT_TRUE(probe);
+  EXPECT_TRUE(cl.link_down());
+  EXPECT_EQ(parsed(*probe).seq, 1);           // the given-up seq is never reused
+  auto reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 3U);
+  EXPECT_EQ(reps[0].outcome, Outcome::Unconfirmed);
+  EXPECT_EQ(reps[1].outcome, Outcome::Unconfirmed);
+  EXPECT_EQ(reps[2].outcome, Outcome::LinkDown);
+  cl.submit({Part::X, {C::Stop, 0}}, 130 * ms);
+  reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 1U);
+  EXPECT_EQ(reps[0].outcome, Outcome::LinkDown);
+  cl.receive(echo_for(1), 150 * ms);
+  EXPECT_FALSE(cl.link_down());
+  cl.submit({Part::X, {C::Stop, 0}}, 160 * ms);
+  EXPECT_TRUE(cl.take_reports().empty());
+  EXPECT_EQ(cl.counters().given_up, 1U);
+}
+
+TEST(ProtocolDelivery, RenumbersTheFrameInFlightWhenTheBoardIsAhead) {
+  Client cl;
+  cl.submit({Part::X, {C::Move, 500}}, 0);
+  ASSERT_TRUE(cl.poll(0, {}));
+  // A board that took seq 200 from another sender answers our 0 as older, with its 200.
+  auto ev = cl.receive(echo_for(200), 5 * ms);
+  ASSERT_EQ(ev.size(), 1U);
+  EXPECT_EQ(ev[0].kind, ap::client::EchoKind::Resync);
+  const auto again = cl.poll(5 * ms, {});
+  ASSERT_TRUE(again);
+  EXPECT_EQ(parsed(*again).seq, 201);
+  EXPECT_EQ(parsed(*again).x, (f::AxisCommand{C::Move, 500}));
+  // An echo of an earlier frame is late, not a reason to renumber.
+  ev = cl.receive(echo_for(199), 6 * ms);
+  EXPECT_EQ(ev[0].kind, ap::client::EchoKind::Late);
+  cl.receive(echo_for(201), 7 * ms);
+  ASSERT_EQ(cl.take_reports().size(), 1U);
+  EXPECT_EQ(cl.counters().resyncs, 1U);
+}
+
+TEST(ProtocolDelivery, AKeepAliveEveryPeriodWhenIdleCarryingTheHeldJog) {
+  Client cl({.first_seq = 998});
+  ap::client::Extras ex;
+  ex.jog = {2, 0};
+  const auto k0 = cl.poll(0, ex);
+  ASSERT_TRUE(k0);
+  EXPECT_EQ(parsed(*k0).x, (f::AxisCommand{C::Jog, 2}));
+  EXPECT_EQ(parsed(*k0).y, (f::AxisCommand{}));
+  cl.receive(echo_for(998), 10 * ms);
+  EXPECT_FALSE(cl.poll(99 * ms, ex));
+  const auto k1 = cl.poll(100 * ms, ex);
+  ASSERT_TRUE(k1);
+  EXPECT_EQ(parsed(*k1).seq, 999);
+  cl.receive(echo_for(999), 110 * ms);
+  EXPECT_EQ(parsed(*cl.poll(200 * ms, ex)).seq, 0);   // the wrap
+  EXPECT_TRUE(cl.take_reports().empty());             // keep-alives are not user commands
+}
+
+TEST(ProtocolDelivery, ACommandOutsideTheTablesIsInvalidAndTakesNoSeq) {
+  Client cl;
+  cl.submit({Part::X, {C::Goto, -5}}, 0);
+  const auto reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 1U);
+  EXPECT_EQ(reps[0].outcome, Outcome::Invalid);
+  EXPECT_EQ(cl.queued(), 0U);
+  EXPECT_EQ(cl.next_seq(), 0);
 }
 
 TEST(ProtocolReadable, ParsesTheIssueExampleAndRejectsNonsense) {

@@ -25,10 +25,14 @@ namespace {
 
 std::string out_root() { return std::string(AP_BINARY_DIR) + "/sim-out"; }
 
+// Every scenarios/*.scn and scenarios/regressions/*.scn (the link-fault regressions of
+// docs/protocol.md "Delivery" and the shrunk storms), as paths below scenarios/.
 std::vector<std::string> bundled() {
   std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(std::string(AP_SOURCE_DIR) + "/scenarios")) {
-    if (e.path().extension() == ".scn") names.push_back(e.path().stem().string());
+  for (const char* dir : {"", "regressions/"}) {
+    for (const auto& e : fs::directory_iterator(std::string(AP_SOURCE_DIR) + "/scenarios/" + dir)) {
+      if (e.path().extension() == ".scn") names.push_back(dir + e.path().stem().string());
+    }
   }
   std::sort(names.begin(), names.end());
   return names;
@@ -66,7 +70,11 @@ TEST_P(Bundled, Passes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SimScenario, Bundled, ::testing::ValuesIn(bundled()),
-                         [](const ::testing::TestParamInfo<std::string>& i) { return i.param; });
+                         [](const ::testing::TestParamInfo<std::string>& i) {
+                           std::string n = i.param;
+                           std::replace(n.begin(), n.end(), '/', '_');
+                           return n;
+                         });
 
 TEST(SimOutputs, VcdAndSvgOfARunAreWellFormed) {
   // A short run: the UART decoder of models/waveform scans the line per bit, so its cost grows

@@ -157,6 +157,7 @@ void Board::tick() {
   ++ticks_;
   param_cycle_ = false;
   frame_this_cycle_ = false;
+  taken_this_cycle_ = false;
   echo_count_ = 0;
   pending_.fill(axis::Command{});
   pending_id_.fill(c::CommandId::Nop);
@@ -166,6 +167,8 @@ void Board::tick() {
   step_axes();
   check_drivers();
   main_state_ = block_ != Block::None ? MainState::Blocked : (param_cycle_ ? MainState::ParamSet : MainState::UserControl);
+  // The refusals are final once the axes have stepped (the axis core refuses too).
+  if (taken_this_cycle_) last_outcome_ = Outcome{block_, refused_};
   send_echoes();
 }
 
@@ -205,7 +208,7 @@ void Board::handle(const frame::RawCommandFramer::Event& e) {
     // A malformed frame is answered but changes nothing else: no handler, no watchdog
     // refresh, last_seq kept (docs/protocol.md, "What a rejected frame may change").
     if (!session_open_) return;
-    echoes_[echo_count_++] = PendingEcho{true, e.rejection, last_seq_, {}};
+    echoes_[echo_count_++] = PendingEcho{true, e.rejection, last_seq_, {}, false};
     return;
   }
   if (!session_open_) {
@@ -219,29 +222,47 @@ void Board::handle(const frame::RawCommandFramer::Event& e) {
   // malformed one, blocked or not.
   if (const frame::Rejection r = table_.lookup(e.frame).rejection; !r.ok()) {
     ++counters_.unhandled_frames;
-    echoes_[echo_count_++] = PendingEcho{true, r, last_seq_, {}};
+    echoes_[echo_count_++] = PendingEcho{true, r, last_seq_, {}, false};
     return;
   }
+  // Delivery (docs/protocol.md "Delivery"): the client repeats a frame until it is answered,
+  // and the link may duplicate, delay and reorder, so a frame runs only when its seq is newer
+  // than the last one taken. A repeat is answered with that frame's outcome and still proves
+  // the link (the watchdog is fed, as by the frame itself); an older frame is answered with the
+  // seq of the last one taken, which tells its sender where the board stands.
+  const codec::SeqOrder order = have_seq_ ? codec::seq_order(last_seq_, e.frame.seq) : codec::SeqOrder::New;
+  if (order != codec::SeqOrder::New) {
+    if (order == codec::SeqOrder::Repeat) {
+      ++counters_.repeated_frames;
+      if (block_ == Block::None) frame_this_cycle_ = true;
+    } else {
+      ++counters_.older_frames;
+    }
+    echoes_[echo_count_++] = PendingEcho{false, {}, last_seq_, e.frame.subs, true};
+    return;
+  }
+  have_seq_ = true;
+  last_seq_ = e.frame.seq;
+  taken_this_cycle_ = true;
+  if (hw_.frame_taken != nullptr) hw_.frame_taken(hw_.ctx, e.frame);
   if (block_ != Block::None) {
     // §7.5.2: commands cannot change the blocked state, so none is executed; the echo still
     // goes out so the PC can show why the unit does not move.
     ++counters_.blocked_frames;
-    last_seq_ = e.frame.seq;
-    echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs};
+    echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs, false};
     return;
   }
   const frame::DispatchResult r = table_.dispatch(e.frame, this);
   if (!r.rejection.ok()) {
     ++counters_.unhandled_frames;
-    echoes_[echo_count_++] = PendingEcho{true, r.rejection, last_seq_, {}};
+    echoes_[echo_count_++] = PendingEcho{true, r.rejection, last_seq_, {}, false};
     return;
   }
   ++counters_.dispatched_frames;
   if (r.x == HandlerStatus::Refused) ++counters_.refused_parts;
   if (r.y == HandlerStatus::Refused) ++counters_.refused_parts;
   frame_this_cycle_ = true;
-  last_seq_ = e.frame.seq;
-  echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs};
+  echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs, false};
 }
 
 void Board::step_axes() {
@@ -340,8 +361,10 @@ void Board::send_echoes() {
   const frame::EchoSource source{this, &Board::echo_axis, &Board::echo_subscriber};
   for (std::size_t k = 0; k < echo_count_; ++k) {
     const PendingEcho& p = echoes_[k];
+    building_replay_ = p.replay;
     const frame::EchoFrame echo =
         p.rejected ? frame::build_rejection_echo(p.seq, p.rejection) : frame::build_echo(p.seq, p.subs, source);
+    building_replay_ = false;
     std::array<std::uint8_t, c::kEchoLength> out{};
     // build_* clamp every value into its table range, so formatting cannot fail.
     if (!frame::format_echo(echo, out).ok()) continue;
@@ -371,18 +394,19 @@ std::int32_t Board::position_um(Axis a) const {
   return clamp32(axis::usteps_to_um(axes_[idx(a)].pos, derived_.mech));
 }
 
-frame::AxisEcho Board::axis_echo(Axis a) const {
-  const std::size_t i = idx(a);
+frame::AxisEcho Board::axis_echo(Axis a) const { return echo_of(idx(a), block_, refused_[idx(a)]); }
+
+frame::AxisEcho Board::echo_of(std::size_t i, Block block, std::uint8_t refused) const {
   const axis::State& s = axes_[i];
-  const std::int32_t um = position_um(a);
-  switch (block_) {
+  const std::int32_t um = position_um(static_cast<Axis>(i));
+  switch (block) {
     case Block::Usb: return {c::EchoStatus::BlockedUsb, um};
     case Block::Charger: return {c::EchoStatus::BlockedCharger, um};
     case Block::Battery: return {c::EchoStatus::BlockedBattery, um};
     case Block::None: break;
   }
   if (fault_ != 0) return {c::EchoStatus::Fault, fault_};
-  if (refused_[i] != kNoRefusal) return {c::EchoStatus::CommandRefused, refused_[i]};
+  if (refused != kNoRefusal) return {c::EchoStatus::CommandRefused, refused};
   if (sleeping_) return {c::EchoStatus::Sleeping, um};
   if (moving(s)) {
     if (s.mode == axis::Mode::Home) return {c::EchoStatus::Homing, um};
@@ -441,7 +465,15 @@ std::int32_t Board::subscriber(frame::SubscriberSlot slot) {
   return 0;
 }
 
-frame::AxisEcho Board::echo_axis(void* ctx, Axis a) { return static_cast<const Board*>(ctx)->axis_echo(a); }
+frame::AxisEcho Board::echo_axis(void* ctx, Axis a) {
+  const auto* b = static_cast<const Board*>(ctx);
+  if (!b->building_replay_) return b->axis_echo(a);
+  // A repeated or older frame: the state now, with the refusals and the block of the last
+  // frame taken (a block that is still on shows anyway).
+  const std::size_t i = idx(a);
+  const Block block = b->block_ != Block::None ? b->block_ : b->last_outcome_.block;
+  return b->echo_of(i, block, b->last_outcome_.refused[i]);
+}
 
 std::int32_t Board::echo_subscriber(void* ctx, frame::SubscriberSlot slot) {
   return static_cast<Board*>(ctx)->subscriber(slot);

@@ -12,6 +12,7 @@
 #include "ap/model/waveform/svg.hpp"
 #include "ap/model/waveform/vcd.hpp"
 #include "codec/layout.hpp"
+#include "core/frame/command_codec.hpp"
 #include "core/storage/parameters.hpp"
 #include "core/storage/store.hpp"
 #include "core/tmc2130/fields.hpp"
@@ -161,6 +162,7 @@ void SimBoard::boot() {
   hw.sample = &SimBoard::sample;
   hw.motor = &SimBoard::motor;
   hw.uart_tx = &SimBoard::uart_tx;
+  hw.frame_taken = &SimBoard::frame_taken;
   checker_.reset();   // it refers to the board it was made for
   board_ = std::make_unique<board::Board>(hw);
   if (wave_) {
@@ -288,6 +290,19 @@ void SimBoard::motor(void* ctx, board::Axis ax, const board::MotorOutput& o) {
   }
 }
 
+void SimBoard::frame_taken(void* ctx, const frame::CommandFrame& f) {
+  // The exactly-once check of the PC (docs/sim.md "Delivery check"): every frame the core took,
+  // across reboots, as the bytes the client formats for it.
+  auto* s = static_cast<SimBoard*>(ctx);
+  std::array<std::uint8_t, codec::kCommandLength> bytes{};
+  if (!frame::format_command(f, bytes).ok()) {
+    s->echo_disagreement("the core took a frame that does not format");
+    return;
+  }
+  ++s->frames_taken_;
+  s->taken_digest_ = fnv1a(s->taken_digest_, bytes);
+}
+
 void SimBoard::uart_tx(void* ctx, std::span<const std::uint8_t> bytes) {
   auto* s = static_cast<SimBoard*>(ctx);
   s->tx_.insert(s->tx_.end(), bytes.begin(), bytes.end());
@@ -379,7 +394,9 @@ void SimBoard::echo_disagreement(const std::string& what) {
 void SimBoard::check_safety() {
   // The safety properties of the board fuzz target (docs/board.md), after every tick.
   const board::Board& b = *board_;
-  const std::uint32_t d = b.counters().dispatched_frames;
+  // Frames that feed the link watchdog (docs/protocol.md "Delivery"): run, or a repeat of the
+  // last one taken.
+  const std::uint32_t d = b.counters().dispatched_frames + b.counters().repeated_frames;
   silent_ = d != dispatched_ ? 0 : silent_ + 1;
   dispatched_ = d;
   auto fail = [&](int a, const char* what) {
@@ -499,6 +516,7 @@ std::string SimBoard::probe(const std::string& subject) {
   if (subject == "x.lost_steps" || subject == "y.lost_steps") return std::to_string(lost_step_risks(axis_of(subject.substr(0, 1))));
   if (subject == "lost_steps") return std::to_string(lost_step_risks(0) + lost_step_risks(1));
   if (subject == "watchdog_stops") return std::to_string(board_->counters().watchdog_expiries);
+  if (subject == "taken") return std::to_string(frames_taken_) + " " + std::to_string(taken_digest_);
   if (subject == "gated") return std::to_string(board_->counters().gated_frames);
   if (subject == "violations") {
     std::string s = std::to_string(violations_.size());

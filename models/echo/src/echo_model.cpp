@@ -119,6 +119,7 @@ void EchoModel::begin_tick(const Env& env) {
   events_.clear();
   out_.clear();
   dispatched_this_tick_ = false;
+  taken_this_tick_ = false;
 }
 
 // ---------------------------------------------------------------- receive (§7.5.1 step 3)
@@ -166,7 +167,24 @@ void EchoModel::frame(const FrameEvent& ev) {
     return;
   }
   p.frame = ev.frame;
+  // protocol.md "Delivery": a seq 1..499 ahead of the last one taken (mod 1000) is new, the
+  // same seq is a repeat, 500..999 ahead is older; the first frame after power-up is new.
+  // Neither a repeat nor an older frame runs; both are answered with the seq of the last frame
+  // taken and its outcome (refusals, block); a repeat feeds the watchdog unless blocked.
+  const int ahead = (static_cast<int>(ev.frame.seq) - static_cast<int>(last_seq_) + 1000) % 1000;
+  if (have_seq_ && (ahead == 0 || ahead >= 500)) {
+    p.replay = true;
+    p.frame.seq = last_seq_;
+    if (ahead == 0 && block_ == EchoStatus::Idle) {
+      since_dispatch_ = 0;
+      dispatched_this_tick_ = true;
+    }
+    events_.push_back(p);
+    return;
+  }
+  have_seq_ = true;
   last_seq_ = ev.frame.seq;
+  taken_this_tick_ = true;
   if (block_ != EchoStatus::Idle) {  // §7.5.2: commands cannot act while blocked; answered
     p.blocked = true;
     events_.push_back(p);
@@ -490,6 +508,10 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
     }
     x.last = m;
   }
+  if (taken_this_tick_) {
+    last_block_ = block_;
+    for (std::size_t a = 0; a < kAxes; ++a) last_refused_[a] = ax_[a].refused;
+  }
   for (std::size_t i = 0; i < events_.size(); ++i) out_.push_back(build(i));
   return out_;
 }
@@ -518,12 +540,16 @@ Expected EchoModel::build(std::size_t i) const {
     o.pos_usteps = x.last.pos;
     // board.md "Echo content": BLOCKED_* > FAULT > COMMAND_REFUSED > SLEEPING > moving
     // (HOMING / ACCEL / CONST / DECEL) > the event that ended the last motion > IDLE.
-    if (block_ != EchoStatus::Idle) {
-      o.status = block_;
+    // An answer to a repeat or an older frame tells the block and refusals of the last frame
+    // taken (protocol.md "Delivery"); the state is today's.
+    const EchoStatus block = block_ != EchoStatus::Idle ? block_ : (ev.replay ? last_block_ : EchoStatus::Idle);
+    const std::optional<CommandId> refused = ev.replay ? last_refused_[a] : x.refused;
+    if (block != EchoStatus::Idle) {
+      o.status = block;
     } else if (fault_ != 0) {
       o = {EchoStatus::Fault, fault_, false, 0};
-    } else if (x.refused) {
-      o = {EchoStatus::CommandRefused, static_cast<std::int32_t>(*x.refused), false, 0};
+    } else if (refused) {
+      o = {EchoStatus::CommandRefused, static_cast<std::int32_t>(*refused), false, 0};
     } else if (sleeping_) {
       o.status = EchoStatus::Sleeping;
     } else if (x.last.phase != Phase::Stop) {

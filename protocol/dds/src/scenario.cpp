@@ -395,7 +395,7 @@ std::optional<Dim> subject_dim(std::string_view s) {
   if ((starts("tmc.x.") || starts("tmc.y.")) && is_word(s.substr(6))) return Dim::none;
   if ((starts("fram.") && is_name(s.substr(5))) || (starts("sub.") && is_name(s.substr(4)))) return Dim::none;
   if (s == "gaps" || s == "watchdog_stops" || s == "rejected" || s == "lost_steps" || s == "echoes" ||
-      s == "commands") {
+      s == "commands" || s == "delivered" || s == "failed" || s == "retransmissions") {
     return Dim::none;
   }
   return std::nullopt;
@@ -446,6 +446,12 @@ Scenario parse(std::string_view text, const std::string& file) {
     } else if (kw == "seed") {
       const Quantity q = p.quantity(Dim::none, "seed", false);
       s.seed = static_cast<std::uint64_t>(q.value);
+    } else if (kw == "first_seq") {
+      const Quantity q = p.quantity(Dim::none, "first seq", false);
+      if (q.value < 0 || q.value > 999 || q.value != static_cast<double>(static_cast<int>(q.value))) {
+        p.fail("first_seq must be an integer 0..999");
+      }
+      s.first_seq = static_cast<std::uint16_t>(q.value);
     } else if (kw == "baud") {
       const Quantity q = p.quantity(Dim::none, "baud rate", false);
       if (q.value < 300 || q.value > 4e6) p.fail("baud must be 300..4000000");
@@ -626,7 +632,7 @@ std::string to_text(const Scenario& s) {
   o << "scenario " << s.name << '\n';
   if (!s.title.empty()) o << "title " << quoted(s.title) << '\n';
   o << "boards " << s.boards << "\nduration " << tm(s.duration_us) << "\nperiod " << tm(s.period_us) << "\ntiming "
-    << (s.timing == Timing::lockstep ? "lockstep" : "realtime") << "\nseed " << s.seed << "\nbaud " << s.baud << '\n';
+    << (s.timing == Timing::lockstep ? "lockstep" : "realtime") << "\nseed " << s.seed << "\nfirst_seq " << s.first_seq << "\nbaud " << s.baud << '\n';
   for (const Setup& st : s.setup) {
     o << "board " << st.key;
     if (st.axis != 0) o << ' ' << st.axis;

@@ -122,6 +122,7 @@ class SimBoard {
   static void sample(void* ctx, board::Inputs& in);
   static void motor(void* ctx, board::Axis a, const board::MotorOutput& o);
   static void uart_tx(void* ctx, std::span<const std::uint8_t> bytes);
+  static void frame_taken(void* ctx, const frame::CommandFrame& f);
   static bool tmc_spi(void* ctx, const core::tmc2130::Datagram& tx, core::tmc2130::Datagram& rx);
   static bool tmc_spi_y(void* ctx, const core::tmc2130::Datagram& tx, core::tmc2130::Datagram& rx);
   static bool fram_spi(void* ctx, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept;
@@ -196,6 +197,8 @@ class SimBoard {
   // Every echo the core sent, over all boots: the FNV-1a digest of the whole TX stream after
   // each of them (docs/sim.md "Echo checks").
   std::vector<std::uint64_t> echo_digests_;
+  std::uint64_t frames_taken_ = 0;
+  std::uint64_t taken_digest_ = kFnvBasis;
 };
 
 }  // namespace ap::sim

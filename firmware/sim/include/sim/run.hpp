@@ -21,6 +21,7 @@
 
 #include "ap/dds/bus.hpp"
 #include "ap/dds/scenario.hpp"
+#include "client/client.hpp"
 #include "sim/board.hpp"
 
 namespace ap::sim {
@@ -40,12 +41,19 @@ struct RunOptions {
 
 struct GapRun {
   std::int64_t t_us;        // when the PC noticed
-  std::uint32_t lost;       // consecutive echoes missing
+  std::uint32_t lost;       // retransmission timeouts in a row (no answer in between)
 };
 
 struct LinkStats {
   std::uint64_t frames = 0, delivered = 0, dropped = 0, corrupted = 0, duplicated = 0, reordered = 0, delayed = 0,
                 cut = 0;
+};
+
+// What the client made of the user's commands (docs/protocol.md "Delivery").
+struct DeliveryStats {
+  std::uint32_t submitted = 0, delivered = 0, failed = 0;
+  std::uint64_t new_frames = 0, retransmissions = 0, given_up = 0, frames_answered = 0, frames_taken = 0;
+  std::vector<client::Report> reports;   // every settled command, in settling order
 };
 
 struct BoardVerdict {
@@ -56,6 +64,7 @@ struct BoardVerdict {
   std::uint64_t lost_step_risks = 0;
   std::uint64_t echoes_model_checked = 0, echo_disagreements = 0;   // board side (models/echo)
   std::uint64_t echoes_from_board = 0;                              // echoes the bus brought
+  DeliveryStats delivery;
 };
 
 struct RunResult {

@@ -24,6 +24,23 @@ inline constexpr std::size_t kSubscriberSlots = 4;
 
 inline constexpr std::uint16_t kSeqModulo = 1000;
 
+// Delivery (docs/protocol.md "Delivery"): a frame whose seq is 1..499 ahead of the last one the
+// board executed (mod 1000) is new, 0 ahead is a repeat of that frame, 500..999 ahead is older.
+// Half the seq space each way, so a seq cannot be new and older at once; the client keeps one
+// frame in flight, so the two ends are never more than a few seqs apart.
+inline constexpr std::uint16_t kSeqNewWindow = kSeqModulo / 2 - 1;  // 499
+
+enum class SeqOrder : std::uint8_t { New, Repeat, Older };
+
+// Where seq `s` stands relative to `last` (both 0..999; larger values are reduced mod 1000).
+constexpr SeqOrder seq_order(std::uint16_t last, std::uint16_t s) {
+  const unsigned ahead = (static_cast<unsigned>(s % kSeqModulo) + kSeqModulo - last % kSeqModulo) % kSeqModulo;
+  if (ahead == 0) return SeqOrder::Repeat;
+  return ahead <= kSeqNewWindow ? SeqOrder::New : SeqOrder::Older;
+}
+
+constexpr std::uint16_t seq_next(std::uint16_t s) { return static_cast<std::uint16_t>((s + 1U) % kSeqModulo); }
+
 // Data fields: six characters, either six digits (0..999999) or '-' and five digits
 // (-99999..-1). "-00000" is not canonical and is rejected, so every value has exactly one
 // spelling and format(parse(b)) == b holds.

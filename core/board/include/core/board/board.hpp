@@ -64,6 +64,9 @@ struct Hardware {
   void (*sample)(void* ctx, Inputs& in) = nullptr;
   void (*motor)(void* ctx, Axis axis, const MotorOutput& out) = nullptr;
   void (*uart_tx)(void* ctx, std::span<const std::uint8_t> bytes) = nullptr;
+  // Each frame that takes a new seq (docs/protocol.md "Delivery": executed, or answered as
+  // blocked), once, in order: a trace point for loggers and for the harness's exactly-once check.
+  void (*frame_taken)(void* ctx, const frame::CommandFrame& f) = nullptr;
 };
 
 enum class MainState : std::uint8_t { Blocked, UserControl, ParamSet };
@@ -77,6 +80,8 @@ struct BoardCounters {
   frame::FramerCounters framer{};
   std::uint32_t dispatched_frames = 0;  // accepted, session open, not blocked: handlers ran
   std::uint32_t gated_frames = 0;       // accepted while the BLE session was not open: dropped
+  std::uint32_t repeated_frames = 0;    // the seq of the last frame taken again: answered, not run
+  std::uint32_t older_frames = 0;       // a seq older than the last frame taken: answered, not run
   std::uint32_t blocked_frames = 0;     // accepted while blocked: answered, not dispatched
   std::uint32_t unhandled_frames = 0;
   std::uint32_t refused_parts = 0;
@@ -152,7 +157,10 @@ class Board {
   std::int32_t fault_code() const { return fault_; }
   BoardCounters counters() const;
   std::uint32_t ticks() const { return ticks_; }
+  // The seq of the last frame taken (docs/protocol.md "Delivery"); none since power-up until
+  // the first one.
   std::uint16_t last_seq() const { return last_seq_; }
+  bool have_seq() const { return have_seq_; }
   // Bytes received but not yet framed, and bytes of a frame the framer holds so far.
   std::size_t rx_pending() const { return rx_count_; }
   std::size_t framer_pending() const { return framer_.pending(); }
@@ -168,6 +176,13 @@ class Board {
     frame::Rejection rejection{};
     std::uint16_t seq = 0;
     frame::SubscriberSlots subs{};
+    bool replay = false;  // answers a repeated or older frame: tells the outcome of the last one taken
+  };
+  // What the last frame taken did (docs/protocol.md "Delivery"): a repeat of it is answered
+  // with the same refusals and block, so a client whose first echo was lost learns the same.
+  struct Outcome {
+    Block block = Block::None;
+    std::array<std::uint8_t, kAxes> refused{kNoRefusal, kNoRefusal};
   };
 
   void begin_of_cycle();
@@ -186,6 +201,7 @@ class Board {
   bool apply_microsteps();
   void driver_fault(std::size_t i, core::tmc2130::Error e);
   frame::HandlerStatus refuse(Axis a, codec::CommandId id);
+  frame::AxisEcho echo_of(std::size_t i, Block block, std::uint8_t refused) const;
   std::int32_t subscriber(frame::SubscriberSlot slot);
 
   static frame::HandlerStatus on_nop(void*, Axis, std::int32_t);
@@ -240,6 +256,10 @@ class Board {
   std::array<PendingEcho, kMaxEchoesPerCycle> echoes_{};
   std::size_t echo_count_ = 0;
   std::uint16_t last_seq_ = 0;
+  bool have_seq_ = false;
+  bool taken_this_cycle_ = false;
+  Outcome last_outcome_{};
+  bool building_replay_ = false;
   std::uint32_t ticks_ = 0;
   BoardCounters counters_{};
 };

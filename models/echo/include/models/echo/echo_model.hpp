@@ -189,6 +189,10 @@ class EchoModel {
   std::int32_t fault_ = 0;
   std::uint32_t since_dispatch_ = 0xFFFFFFFFU;  // ticks; starts expired (docs/motion.md §7)
   std::uint16_t last_seq_ = 0;
+  bool have_seq_ = false;       // no frame taken since power-up
+  bool taken_this_tick_ = false;
+  codec::EchoStatus last_block_ = codec::EchoStatus::Idle;           // of the last frame taken
+  std::array<std::optional<codec::CommandId>, kAxes> last_refused_{};  // "
   std::uint32_t ticks_ = 0;
   bool dispatched_this_tick_ = false;
 
@@ -196,6 +200,7 @@ class EchoModel {
     bool rejected = false;
     frame::Rejection rejection{};
     bool blocked = false;
+    bool replay = false;  // a repeat or an older frame: answered, not run
     frame::CommandFrame frame{};
   };
   std::vector<Pending> events_;

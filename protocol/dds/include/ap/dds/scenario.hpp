@@ -135,6 +135,7 @@ struct Scenario {
   std::int64_t period_us = 100'000;   // PC command period (thesis: 100 ms)
   Timing timing = Timing::lockstep;
   std::uint64_t seed = 1;
+  std::uint16_t first_seq = 0;        // the PC's first command seq (docs/protocol.md "Delivery")
   std::uint32_t baud = 115'200;
   std::vector<Setup> setup;
   std::vector<Fault> faults;

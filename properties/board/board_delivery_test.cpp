@@ -1,0 +1,162 @@
+// The board's half of delivery (docs/protocol.md "Delivery"): a frame runs only when its seq is
+// newer than the last one taken (1..499 ahead, mod 1000); a repeat is answered with the same
+// outcome and feeds the link watchdog; an older frame is answered with the last seq taken.
+#include <gtest/gtest.h>
+
+#include "board_rig.hpp"
+#include "codec/statuses.hpp"
+
+using namespace ap;
+using namespace ap::board;
+using ap::board::test::Rig;
+using C = codec::CommandId;
+using S = codec::EchoStatus;
+
+namespace {
+
+// A board at rest, homed by its encoders at 10 mm on both axes (2 mm lead, 200 steps, 16
+// microsteps: 3200 usteps per rev, so 5 revolutions).
+// (The rig is built in place: the board holds a pointer to it.)
+void boot_homed(Rig& r) {
+  r.in.encoder[0] = {5, 0, 1};
+  r.in.encoder[1] = {5, 0, 1};
+  r.boot();
+}
+
+void send_seq(Rig& r, std::uint16_t seq, C x, std::int32_t xd, C y = C::Nop, std::int32_t yd = 0) {
+  r.send_raw(Rig::bytes_of(Rig::frame_of(seq, x, xd, y, yd)));
+}
+
+frame::EchoFrame last(const Rig& r) {
+  const auto e = r.last_echo();
+  EXPECT_TRUE(e.has_value());
+  return e.value_or(frame::EchoFrame{});
+}
+
+}  // namespace
+
+TEST(BoardDelivery, ARepeatedRelativeMoveRunsOnceAndItsRepeatIsAnswered) {
+  Rig r;
+  boot_homed(r);
+  const std::int32_t start = r.ax(Axis::X).pos;
+  send_seq(r, 40, C::Move, 1000);  // +1 mm = 1600 usteps
+  r.tick();
+  EXPECT_EQ(r.ax(Axis::X).target, start + 1600);
+  send_seq(r, 40, C::Move, 1000);
+  r.tick();
+  EXPECT_EQ(r.ax(Axis::X).target, start + 1600) << "a repeat must not move again";
+  EXPECT_EQ(r.board->counters().repeated_frames, 1U);
+  EXPECT_EQ(r.board->counters().dispatched_frames, 1U);
+  ASSERT_EQ(r.tx.size(), 2U);
+  EXPECT_EQ(last(r).seq, 40);
+  r.tick(3000);
+  EXPECT_EQ(r.ax(Axis::X).pos, start + 1600);
+}
+
+TEST(BoardDelivery, AnOlderFrameDoesNotRunAndIsAnsweredWithTheLastSeqTaken) {
+  Rig r;
+  boot_homed(r);
+  send_seq(r, 41, C::Goto, 12000);
+  r.tick();
+  const std::int32_t target = r.ax(Axis::X).target;
+  send_seq(r, 40, C::Goto, 15000);
+  r.tick();
+  EXPECT_EQ(r.ax(Axis::X).target, target);
+  EXPECT_EQ(last(r).seq, 41);
+  EXPECT_EQ(r.board->counters().older_frames, 1U);
+  // 500 ahead is as far as "older" goes (half the seq space).
+  send_seq(r, 541, C::Goto, 15000);
+  r.tick();
+  EXPECT_EQ(r.ax(Axis::X).target, target);
+  EXPECT_EQ(r.board->counters().older_frames, 2U);
+  // 499 ahead is new.
+  send_seq(r, 540, C::Goto, 15000);
+  r.tick();
+  EXPECT_NE(r.ax(Axis::X).target, target);
+  EXPECT_EQ(last(r).seq, 540);
+}
+
+TEST(BoardDelivery, TheSeqWrapsFrom999To0) {
+  Rig r;
+  boot_homed(r);
+  send_seq(r, 998, C::Nop, 0);
+  r.tick();
+  send_seq(r, 999, C::Nop, 0);
+  r.tick();
+  send_seq(r, 0, C::Move, 1000);
+  r.tick();
+  EXPECT_EQ(last(r).seq, 0);
+  EXPECT_EQ(r.board->counters().dispatched_frames, 3U);
+  send_seq(r, 999, C::Move, 1000);  // late copy from before the wrap
+  r.tick();
+  EXPECT_EQ(r.board->counters().dispatched_frames, 3U);
+  EXPECT_EQ(last(r).seq, 0);
+}
+
+TEST(BoardDelivery, AnyFirstSeqAfterPowerUpIsNew) {
+  for (const std::uint16_t seq : {std::uint16_t{0}, std::uint16_t{1}, std::uint16_t{500}, std::uint16_t{999}}) {
+    Rig r;
+  boot_homed(r);
+    send_seq(r, seq, C::Move, 1000);
+    r.tick();
+    EXPECT_EQ(r.board->counters().dispatched_frames, 1U) << seq;
+    EXPECT_EQ(last(r).seq, seq);
+  }
+}
+
+TEST(BoardDelivery, TheAnswerToARepeatTellsTheSameRefusalAsTheFirstAnswer) {
+  Rig r;
+  boot_homed(r);
+  send_seq(r, 7, C::Goto, 999999, C::Move, 1000);  // beyond the soft limit: refused
+  r.tick();
+  const frame::EchoFrame first = last(r);
+  EXPECT_EQ(first.x.status, S::CommandRefused);
+  EXPECT_EQ(first.x.data, static_cast<std::int32_t>(C::Goto));
+  r.tick(50);
+  send_seq(r, 7, C::Goto, 999999, C::Move, 1000);
+  r.tick();
+  const frame::EchoFrame again = last(r);
+  EXPECT_EQ(again.seq, 7);
+  EXPECT_EQ(again.x.status, S::CommandRefused);
+  EXPECT_EQ(again.x.data, static_cast<std::int32_t>(C::Goto));
+  EXPECT_NE(again.y.status, S::CommandRefused);
+  // A new frame clears it.
+  send_seq(r, 8, C::Nop, 0);
+  r.tick();
+  EXPECT_NE(last(r).x.status, S::CommandRefused);
+}
+
+TEST(BoardDelivery, TheAnswerToARepeatOfABlockedFrameSaysBlockedAfterTheBlockEnds) {
+  Rig r;
+  boot_homed(r);
+  r.in.charger = true;
+  r.tick();
+  send_seq(r, 3, C::Move, 1000);
+  r.tick();
+  EXPECT_EQ(last(r).x.status, S::BlockedCharger);
+  r.in.charger = false;
+  r.tick();
+  send_seq(r, 3, C::Move, 1000);
+  r.tick();
+  EXPECT_EQ(last(r).x.status, S::BlockedCharger) << "the repeat tells what happened to the frame";
+  EXPECT_EQ(r.ax(Axis::X).mode, axis::Mode::Idle);
+}
+
+TEST(BoardDelivery, RepeatsFeedTheLinkWatchdogOlderFramesDoNot) {
+  Rig r;
+  boot_homed(r);
+  send_seq(r, 10, C::Jog, 1);
+  r.tick();
+  for (int t = 0; t < 2000; ++t) {
+    if (t % 100 == 0) send_seq(r, 10, C::Jog, 1);  // the client repeating an unanswered frame
+    r.tick();
+  }
+  EXPECT_EQ(r.ax(Axis::X).mode, axis::Mode::Jog);
+  EXPECT_EQ(r.board->counters().watchdog_expiries, 0U);
+  for (int t = 0; t < 2000; ++t) {
+    if (t % 100 == 0) send_seq(r, 9, C::Jog, 1);   // older: proves nothing about the PC now
+    r.tick();
+  }
+  EXPECT_EQ(r.board->counters().watchdog_expiries, 1U);
+  EXPECT_NE(r.ax(Axis::X).mode, axis::Mode::Jog);
+}
