@@ -261,3 +261,47 @@ TEST(ProtocolReadable, ParsesTheIssueExampleAndRejectsNonsense) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ProtocolDelivery, ASecondStopOfAnAxisWhileItsFirstIsQueuedRidesWithIt) {
+  Client cl;
+  cl.submit({Part::Y, {C::Goto, 1000}}, 0);
+  ASSERT_TRUE(cl.poll(0, {}));
+  const auto s1 = cl.submit({Part::X, {C::Stop, 0}}, 1);
+  const auto g = cl.submit({Part::X, {C::Goto, 5000}}, 2);
+  const auto s2 = cl.submit({Part::X, {C::Stop, 0}}, 3);   // cancels the goto issued before it
+  auto reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 1U);
+  EXPECT_EQ(reps[0].ticket, g);
+  EXPECT_EQ(reps[0].outcome, Outcome::Superseded);
+  EXPECT_EQ(cl.queued(), 1U);
+  cl.receive(echo_for(0), 10 * ms);
+  EXPECT_EQ(cl.take_reports().size(), 1U);   // the Y goto
+  const auto n = cl.poll(10 * ms, {});
+  ASSERT_TRUE(n);
+  EXPECT_EQ(parsed(*n).x, (f::AxisCommand{C::Stop, 0}));
+  cl.receive(echo_for(1, S::Decelerating), 20 * ms);
+  reps = cl.take_reports();
+  ASSERT_EQ(reps.size(), 2U);
+  EXPECT_EQ(reps[0].ticket, s1);
+  EXPECT_EQ(reps[1].ticket, s2);
+  EXPECT_EQ(reps[1].issued_us, 3);
+  EXPECT_EQ(reps[1].seq, reps[0].seq);
+  EXPECT_EQ(cl.counters().delivered, 3U);
+  EXPECT_TRUE(cl.idle());
+}
+
+TEST(ProtocolDelivery, StopsOfBothAxesShareOneFrameWhicheverCameFirst) {
+  Client cl;
+  cl.submit({Part::X, {C::Goto, 1000}}, 0);
+  ASSERT_TRUE(cl.poll(0, {}));
+  cl.submit({Part::Y, {C::Stop, 0}}, 1);
+  cl.submit({Part::X, {C::Stop, 0}}, 2);
+  cl.receive(echo_for(0), 10 * ms);
+  const auto fr = parsed(*cl.poll(10 * ms, {}));
+  EXPECT_EQ(fr.x, (f::AxisCommand{C::Stop, 0}));
+  EXPECT_EQ(fr.y, (f::AxisCommand{C::Stop, 0}));
+}
+
+}  // namespace

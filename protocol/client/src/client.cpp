@@ -66,7 +66,7 @@ std::optional<std::uint16_t> Client::in_flight_seq() const {
 }
 
 Ticket Client::submit(const Command& cmd, std::int64_t now_us) {
-  const Pending p{next_ticket_++, cmd, now_us};
+  const Pending p{next_ticket_++, cmd, now_us, {}};
   ++counters_.commands;
   // A command the tables do not admit is refused here, before it can take a seq.
   frame::CommandFrame probe;
@@ -95,7 +95,13 @@ Ticket Client::submit(const Command& cmd, std::int64_t now_us) {
     }
   }
   auto pos = queue_.begin();
-  while (pos != queue_.end() && is_stop(pos->command)) ++pos;
+  while (pos != queue_.end() && is_stop(pos->command)) {
+    if (pos->command.part == cmd.part) {
+      pos->riders.emplace_back(p.ticket, now_us);
+      return p.ticket;
+    }
+    ++pos;
+  }
   queue_.insert(pos, p);
   return p.ticket;
 }
@@ -151,8 +157,14 @@ void Client::start_frame(std::int64_t now_us, const Extras& extras) {
     // A unit command takes a part whose axis holds no jog, so the jog's keep-alive rides along.
     const int part = first == Part::X ? 0 : first == Part::Y ? 1 : (extras.jog[0] == 0 || extras.jog[1] != 0 ? 0 : 1);
     place(part);
-    // The X part runs before the Y part, so a second command fits only behind one in X.
-    if (part == 0 && !queue_.empty() && queue_.front().command.part != Part::X) place(1);
+    // The X part runs before the Y part, so a second command fits only behind one in X; two
+    // stops of different axes commute, so a stop of X also rides behind a stop of Y.
+    if (part == 0 && !queue_.empty() && queue_.front().command.part != Part::X) {
+      place(1);
+    } else if (part == 1 && is_stop(f.commands.front().command) && !queue_.empty() && is_stop(queue_.front().command) &&
+               queue_.front().command.part == Part::X) {
+      place(0);
+    }
   }
   for (std::size_t i = 0; i < 2; ++i) {
     if (used[i]) continue;
@@ -197,8 +209,19 @@ void Client::fail(const Pending& p, Outcome o, std::int64_t now_us, const InFlig
     r.first_sent_us = f->first_sent_us;
     r.transmissions = f->transmissions;
   }
-  ++counters_.failed;
+  report(p, r);
+}
+
+void Client::report(const Pending& p, Report r) {
+  const bool ok = delivered(r.outcome);
+  (ok ? counters_.delivered : counters_.failed) += 1;
   reports_.push_back(r);
+  for (const auto& [ticket, issued] : p.riders) {
+    r.ticket = ticket;
+    r.issued_us = issued;
+    (ok ? counters_.delivered : counters_.failed) += 1;
+    reports_.push_back(r);
+  }
 }
 
 void Client::settle(const frame::EchoFrame& echo, std::int64_t now_us) {
@@ -221,8 +244,7 @@ void Client::settle(const frame::EchoFrame& echo, std::int64_t now_us) {
     r.transmissions = f.transmissions;
     r.status = part.status;
     r.data = part.data;
-    ++counters_.delivered;
-    reports_.push_back(r);
+    report(f.commands[j], r);
   }
 }
 

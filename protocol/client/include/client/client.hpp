@@ -141,6 +141,9 @@ class Client {
     Ticket ticket = 0;
     Command command{};
     std::int64_t issued_us = 0;
+    // Stops of the same axis issued while this stop was still queued: they ride with it and
+    // settle with its outcome (one stop frame, not one per key press).
+    std::vector<std::pair<Ticket, std::int64_t>> riders;
   };
   struct InFlight {
     frame::CommandFrame frame{};
@@ -157,6 +160,7 @@ class Client {
   std::string send(std::int64_t now_us);
   void settle(const frame::EchoFrame& echo, std::int64_t now_us);
   void fail(const Pending& p, Outcome o, std::int64_t now_us, const InFlight* f);
+  void report(const Pending& p, Report r);
   std::int64_t retransmit_interval() const;
   EchoEvent classify(const frame::EchoFramer::Event& e, std::int64_t now_us);
 
