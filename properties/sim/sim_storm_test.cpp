@@ -202,7 +202,11 @@ std::string kind_of(const std::string& problem) {
 std::string shrink(const Mix& mix, std::uint64_t seed, std::uint16_t first_seq, std::vector<BoardStorm> storms,
                    std::uint32_t b, const std::string& kind) {
   const std::string name = std::string("storm_") + mix.name + "_" + std::to_string(seed) + "_" + std::to_string(b);
+  // Boards past b go: board b's links draw from a random stream keyed by its index alone.
+  storms.resize(b + 1);
+  int runs = 0;  // a bound on the reruns: a planted bug may fail every storm, and each rerun costs ~8 s
   auto fails = [&](const std::vector<BoardStorm>& st) {
+    if (++runs > 24) return false;
     for (const std::string& p : board_problems(run(scenario_text(name, mix, seed, first_seq, st, b), name), b)) {
       if (kind_of(p) == kind) return true;
     }
@@ -264,8 +268,10 @@ TEST_P(Storm, EveryCommandTakesEffectExactlyOnce) {
       ++violations;
       std::string all;
       for (const std::string& x : p) all += "\n  " + x;
-      ADD_FAILURE() << mix.name << " seed " << seed << ", board " << b << ":" << all << "\n  shrunk to "
-                    << shrink(mix, seed, first_seq, st, b, kind_of(p.front()));
+      // The first failing board of a run is shrunk into a regression scenario; the rest only
+      // reported (one reproducer is what a fix needs, and shrinking costs reruns).
+      ADD_FAILURE() << mix.name << " seed " << seed << ", board " << b << ":" << all
+                    << (violations == 1 ? "\n  shrunk to " + shrink(mix, seed, first_seq, st, b, kind_of(p.front())) : "");
     }
     if (!r.pass && violations == 0) ADD_FAILURE() << ap::sim::format_report(sc::parse(scenario_text(name, mix, seed, first_seq, st)), r);
   }
