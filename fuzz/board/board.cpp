@@ -35,8 +35,10 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "board_rig.hpp"
+#include "models/safety/board_monitor.hpp"
 #include "codec/commands.hpp"
 #include "codec/layout.hpp"
 #include "codec/subscribers.hpp"
@@ -94,23 +96,10 @@ frame::SubscriberSlot slot_of(std::uint8_t b) {
   return {id, static_cast<std::uint8_t>(info.arg_range.min + (b >> 4) % span)};
 }
 
-struct AxisWatch {
-  bool latch_min = false;
-  bool latch_max = false;
-  bool blocked_stopped = false;
-  bool tracking = false;  // a move started from rest toward `target`
-  std::int32_t target = 0;
-  int side = 0;
-};
-
 bool same_state(const axis::State& a, const axis::State& b) {
   return a.phase == b.phase && a.mode == b.mode && a.dir == b.dir && a.jog_dir == b.jog_dir && a.level == b.level &&
          a.latch_min == b.latch_min && a.latch_max == b.latch_max && a.homed == b.homed && a.pos == b.pos &&
          a.target == b.target && a.v == b.v && a.frac == b.frac;
-}
-
-bool same_mechanics(const axis::Mechanics& a, const axis::Mechanics& b) {
-  return a.pitch_um == b.pitch_um && a.steps_per_rev == b.steps_per_rev && a.microsteps == b.microsteps;
 }
 
 #ifdef AP_BOARD_SETTLE_CHECK
@@ -142,11 +131,11 @@ Rig* fresh_rig() {
 
 struct Harness {
   Rig* const rig = fresh_rig();
-  std::array<AxisWatch, kAxes> w{};
+  // The axis safety properties (models/safety), one monitor per power-up.
+  model::safety::BoardMonitor monitor;
+  std::vector<model::safety::Violation> found;
   std::int64_t ticks = 0;
   int reboots = 0;  // after the power-up in run()
-  std::int64_t silent = axis::kLinkTimeoutTicks;  // ticks since the last dispatched frame
-  std::uint32_t dispatched = 0;
   std::int64_t since_chip_reset[kAxes] = {-1, -1};
   std::array<std::uint8_t, codec::kCommandLength> last_frame{};
   bool have_frame = false;
@@ -162,14 +151,9 @@ struct Harness {
     (void)rig->boot();
     const model::echo::Boot facts = model::echo::boot_facts(*rig->board, rig->in, stored);
     checker.emplace(*rig->board, facts);
-    for (std::size_t a = 0; a < kAxes; ++a) {
-      w[a] = AxisWatch{};
-      w[a].latch_min = rig->in.endstop_min[a] != 0;
-      w[a].latch_max = rig->in.endstop_max[a] != 0;
-      since_chip_reset[a] = -1;
-    }
-    silent = axis::kLinkTimeoutTicks;
-    dispatched = 0;
+    monitor = model::safety::BoardMonitor{};
+    monitor.booted(*rig->board);
+    for (std::size_t a = 0; a < kAxes; ++a) since_chip_reset[a] = -1;
   }
 
   bool budget_left() const { return ticks < kMaxTicks; }
@@ -184,8 +168,7 @@ struct Harness {
   void tick() {
     ++ticks;
     Board& b = *rig->board;
-    const std::array<axis::State, kAxes> before{b.axis_state(Axis::X), b.axis_state(Axis::Y)};
-    const axis::Mechanics mech = b.mechanics();
+    monitor.before_tick(b);
     const std::size_t sent_before = rig->tx.size();
     rig->tick();
     // Every echo of the tick against the model; not in the tick the power dies in (that echo
@@ -195,93 +178,10 @@ struct Harness {
       for (const std::string& m : checker->after_tick(sent)) echo_disagrees(m, b.ticks());
     }
     power_dies_this_tick = false;
-    // Frames that feed the link watchdog (docs/protocol.md "Delivery"): run, or a repeat of
-    // the last one taken.
-    const std::uint32_t d = b.counters().dispatched_frames + b.counters().repeated_frames;
-    silent = d != dispatched ? 0 : silent + 1;
-    dispatched = d;
-    const bool mech_changed = !same_mechanics(b.mechanics(), mech);
-    bool any_steps = false;
-    for (std::size_t a = 0; a < kAxes; ++a) {
-      check_axis(a, before[a], mech_changed);
-      any_steps = any_steps || rig->motor[a].steps > 0;
-    }
-    // The saved step counter is never marked valid while the carriage moves.
-    if (any_steps && b.store().current().step_counts_valid) violation("step while the saved counter is valid", -1, b.ticks());
-  }
-
-  void check_axis(std::size_t a, const axis::State& p, bool mech_changed) {
-    const Board& b = *rig->board;
-    const auto ax = static_cast<Axis>(a);
-    const int ai = static_cast<int>(a);
-    const std::uint32_t t = b.ticks();
-    const axis::State& n = b.axis_state(ax);
-    const axis::Config& c = b.axis_config(ax);
-    const MotorOutput& o = rig->motor[a];
-    AxisWatch& x = w[a];
-    if (!axis::state_valid(n)) violation("axis state out of its invariant ranges", ai, t);
-    // DIR changes only at or below the start speed (a reversal decelerates first).
-    if (n.dir != p.dir && p.v > c.v_start * axis::kSpeedScale) violation("DIR flipped above the start speed", ai, t);
-    if (o.steps > 0 && o.dir != n.dir) violation("steps emitted against the DIR state", ai, t);
-    check_endstops(a, o);
-    check_block(a, p, n, o);
-    if (mech_changed) {
-      x.tracking = false;
-      return;
-    }
-    // Soft limits are never crossed once the position is known.
-    if (p.homed != 0 && n.homed != 0 && p.pos >= c.soft_min && p.pos <= c.soft_max &&
-        (n.pos < c.soft_min || n.pos > c.soft_max)) {
-      violation("soft travel limit crossed", ai, t);
-    }
-    // The link watchdog: no jog outlives 3 silent command periods.
-    if (silent >= axis::kLinkTimeoutTicks && n.mode == axis::Mode::Jog) {
-      violation("jog still running after the link watchdog period", ai, t);
-    }
-    check_target(a, p, n);
-    check_chip_restore(a);
-  }
-
-  // No step toward an active endstop, nor toward one not yet moved away from.
-  void check_endstops(std::size_t a, const MotorOutput& o) {
-    AxisWatch& x = w[a];
-    const int ai = static_cast<int>(a);
-    if (rig->in.endstop_min[a] != 0) x.latch_min = true;
-    if (rig->in.endstop_max[a] != 0) x.latch_max = true;
-    if (o.steps <= 0) return;
-    if (o.dir < 0 && x.latch_min) violation("step toward an active min endstop", ai, rig->board->ticks());
-    if (o.dir > 0 && x.latch_max) violation("step toward an active max endstop", ai, rig->board->ticks());
-    if (o.dir > 0 && rig->in.endstop_min[a] == 0) x.latch_min = false;
-    if (o.dir < 0 && rig->in.endstop_max[a] == 0) x.latch_max = false;
-  }
-
-  // Blocked: brake only; once stopped, not one step until unblocked.
-  void check_block(std::size_t a, const axis::State& p, const axis::State& n, const MotorOutput& o) {
-    AxisWatch& x = w[a];
-    if (rig->board->block() == Block::None) {
-      x.blocked_stopped = false;
-      return;
-    }
-    const int ai = static_cast<int>(a);
-    if (n.v > p.v) violation("speed increased while blocked", ai, rig->board->ticks());
-    if (x.blocked_stopped && (o.steps != 0 || n.v != 0)) violation("step while blocked after the stop", ai, rig->board->ticks());
-    x.blocked_stopped = x.blocked_stopped || n.v == 0;
-  }
-
-  // A target set from rest is reachable: it must never be passed.
-  void check_target(std::size_t a, const axis::State& p, const axis::State& n) {
-    AxisWatch& x = w[a];
-    const bool new_move = n.mode == axis::Mode::Position && (p.mode != axis::Mode::Position || p.target != n.target);
-    if (new_move) {
-      x.tracking = p.v == 0;
-      x.target = n.target;
-      x.side = p.pos > n.target ? 1 : (p.pos < n.target ? -1 : 0);
-    }
-    if (!x.tracking) return;
-    const int side = n.pos > x.target ? 1 : (n.pos < x.target ? -1 : 0);
-    if (side != 0 && x.side != 0 && side != x.side) violation("reachable target passed", static_cast<int>(a), rig->board->ticks());
-    if (side != 0) x.side = side;
-    if (n.mode != axis::Mode::Position || n.target != x.target) x.tracking = false;
+    found.clear();
+    monitor.after_tick(b, found);
+    if (!found.empty()) violation(found.front().what, found.front().axis, found.front().tick);
+    for (std::size_t a = 0; a < kAxes; ++a) check_chip_restore(a);
   }
 
   // A chip reset is repaired from the shadows within one check period.

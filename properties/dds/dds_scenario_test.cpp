@@ -35,27 +35,33 @@ const std::string kHead = "scenario t\nduration 10 s\n";
 }  // namespace
 
 TEST(dds_scenario, BundledScenariosParseAndRoundTrip) {
-  // issue 9 item 7: the bundled scenarios.
+  // issue 9 item 7: the bundled scenarios; the link-fault regressions of docs/protocol.md
+  // "Delivery" (scenarios/regressions/, where shrunk storms join them).
   const std::set<std::string> expected{"absolute_20mm",  "manual_reversal", "accel_save_reboot",
                                        "ihold_irun",     "endstop_hit",     "battery_charger_blocking",
                                        "link_loss_jog",  "homing",          "faulty_link_jog",
-                                       "many_boards"};
-  std::set<std::string> found;
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(AP_SOURCE_DIR) + "/scenarios")) {
-    if (entry.path().extension() != ".scn") continue;
-    SCOPED_TRACE(entry.path().string());
-    const sc::Scenario s = sc::parse_file(entry.path().string());
-    EXPECT_EQ(s.name, entry.path().stem().string()) << "the file name is the scenario name";
-    EXPECT_FALSE(s.title.empty());
-    EXPECT_FALSE(s.actions.empty());
-    EXPECT_FALSE(s.expectations.empty());
-    EXPECT_TRUE(std::is_sorted(s.actions.begin(), s.actions.end(),
-                               [](const auto& a, const auto& b) { return a.t_us < b.t_us; }));
-    const sc::Scenario again = sc::parse(sc::to_text(s), "printed");
-    EXPECT_EQ(without_lines(again), without_lines(s)) << sc::to_text(s);
-    found.insert(s.name);
+                                       "many_boards",    "many_boards_faults"};
+  const std::set<std::string> regressions{"link_all_faults", "link_corrupt_delay", "link_corrupt_drop",
+                                          "link_corrupt_reorder", "link_drop_stop_lost"};
+  std::set<std::string> found, found_regressions;
+  for (const char* dir : {"/scenarios", "/scenarios/regressions"}) {
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(AP_SOURCE_DIR) + dir)) {
+      if (entry.path().extension() != ".scn") continue;
+      SCOPED_TRACE(entry.path().string());
+      const sc::Scenario s = sc::parse_file(entry.path().string());
+      EXPECT_EQ(s.name, entry.path().stem().string()) << "the file name is the scenario name";
+      EXPECT_FALSE(s.title.empty());
+      EXPECT_FALSE(s.actions.empty());
+      EXPECT_FALSE(s.expectations.empty());
+      EXPECT_TRUE(std::is_sorted(s.actions.begin(), s.actions.end(),
+                                 [](const auto& a, const auto& b) { return a.t_us < b.t_us; }));
+      const sc::Scenario again = sc::parse(sc::to_text(s), "printed");
+      EXPECT_EQ(without_lines(again), without_lines(s)) << sc::to_text(s);
+      (std::string(dir) == "/scenarios" ? found : found_regressions).insert(s.name);
+    }
   }
   EXPECT_EQ(found, expected);
+  for (const std::string& r : regressions) EXPECT_EQ(found_regressions.count(r), 1U) << r;
 }
 
 TEST(dds_scenario, UnitsAreCanonical) {

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "ap/model/mechanics.hpp"
+#include "models/safety/board_monitor.hpp"
 #include "ap/model/waveform/svg.hpp"
 #include "ap/model/waveform/vcd.hpp"
 #include "codec/layout.hpp"
@@ -187,13 +188,8 @@ void SimBoard::boot() {
   const model::echo::Boot facts = model::echo::boot_facts(*board_, board_->inputs(), stored);
   checker_ = std::make_unique<model::echo::BoardChecker>(*board_, facts);
   ++boots_;
-  silent_ = axis::kLinkTimeoutTicks;
-  dispatched_ = 0;
-  for (std::size_t a = 0; a < board::kAxes; ++a) {
-    latch_min_[a] = 0;
-    latch_max_[a] = 0;
-    blocked_stopped_[a] = false;
-  }
+  monitor_ = model::safety::BoardMonitor{};
+  monitor_.booted(*board_);
 }
 
 void SimBoard::fill_inputs(board::Inputs& in) {
@@ -357,7 +353,7 @@ void SimBoard::advance_to(std::int64_t t_us) {
 }
 
 void SimBoard::tick() {
-  for (std::size_t a = 0; a < board::kAxes; ++a) before_[a] = board_->axis_state(static_cast<board::Axis>(a));
+  monitor_.before_tick(*board_);
   if (button_ && now_us_ >= button_until_us_) button_ = false;
   tick_echoes_.clear();
   const std::uint64_t samples = samples_;
@@ -392,42 +388,12 @@ void SimBoard::echo_disagreement(const std::string& what) {
 }
 
 void SimBoard::check_safety() {
-  // The safety properties of the board fuzz target (docs/board.md), after every tick.
-  const board::Board& b = *board_;
-  // Frames that feed the link watchdog (docs/protocol.md "Delivery"): run, or a repeat of the
-  // last one taken.
-  const std::uint32_t d = b.counters().dispatched_frames + b.counters().repeated_frames;
-  silent_ = d != dispatched_ ? 0 : silent_ + 1;
-  dispatched_ = d;
-  auto fail = [&](int a, const char* what) {
-    if (violations_.size() < 100) violations_.push_back({static_cast<std::int64_t>(ticks_ + 1) * 1000, a, what});
-  };
-  for (std::size_t a = 0; a < board::kAxes; ++a) {
-    const auto ax = static_cast<board::Axis>(a);
-    const axis::State& p = before_[a];
-    const axis::State& n = b.axis_state(ax);
-    const axis::Config& c = b.axis_config(ax);
-    const board::MotorOutput& o = b.motor_output(ax);
-    const int ai = static_cast<int>(a);
-    if (n.dir != p.dir && p.v > c.v_start * axis::kSpeedScale) fail(ai, "DIR flipped above the start speed");
-    if (b.inputs().endstop_min[a] != 0) latch_min_[a] = 1;
-    if (b.inputs().endstop_max[a] != 0) latch_max_[a] = 1;
-    if (o.steps > 0) {
-      if (o.dir < 0 && latch_min_[a] != 0) fail(ai, "step toward an active min endstop");
-      if (o.dir > 0 && latch_max_[a] != 0) fail(ai, "step toward an active max endstop");
-      if (o.dir > 0 && b.inputs().endstop_min[a] == 0) latch_min_[a] = 0;
-      if (o.dir < 0 && b.inputs().endstop_max[a] == 0) latch_max_[a] = 0;
-    }
-    if (b.block() != board::Block::None) {
-      if (n.v > p.v) fail(ai, "speed increased while blocked");
-      if (blocked_stopped_[a] && (o.steps != 0 || n.v != 0)) fail(ai, "step while blocked after the stop");
-      blocked_stopped_[a] = blocked_stopped_[a] || n.v == 0;
-    } else {
-      blocked_stopped_[a] = false;
-    }
-    if (silent_ >= axis::kLinkTimeoutTicks && n.mode == axis::Mode::Jog) {
-      fail(ai, "jog still running after the link watchdog period");
-    }
+  // The axis safety properties (models/safety, the same monitor as the board fuzz target's),
+  // after every tick.
+  found_.clear();
+  monitor_.after_tick(*board_, found_);
+  for (const model::safety::Violation& v : found_) {
+    if (violations_.size() < 100) violations_.push_back({static_cast<std::int64_t>(v.tick) * 1000, v.axis, v.what});
   }
 }
 

@@ -25,6 +25,7 @@
 #include "core/axis/watchdog.hpp"
 #include "core/board/board.hpp"
 #include "models/echo/board_checker.hpp"
+#include "models/safety/board_monitor.hpp"
 #include "models/fram/mb85rs256b.hpp"
 #include "models/tmc2130/device.hpp"
 #include "ap/model/mechanics.hpp"
@@ -168,10 +169,8 @@ class SimBoard {
   std::array<AxisRec, board::kAxes> rec_{};
   std::array<StepClock, board::kAxes> clock_{};
   std::array<board::MotorOutput, board::kAxes> out_{};
-  std::array<axis::State, board::kAxes> before_{};
-  std::array<std::uint8_t, board::kAxes> latch_min_{};
-  std::array<std::uint8_t, board::kAxes> latch_max_{};
-  std::array<bool, board::kAxes> blocked_stopped_{};
+  model::safety::BoardMonitor monitor_;
+  std::vector<model::safety::Violation> found_;
   std::vector<Violation> violations_;
   std::vector<std::string> trace_rows_;
   std::array<std::vector<double>, board::kAxes> plot_t_, plot_pos_, plot_v_;
@@ -183,8 +182,6 @@ class SimBoard {
   std::array<std::optional<std::size_t>, board::kAxes> risk_cache_{};
   std::array<std::size_t, board::kAxes> risk_cache_edges_{};
   std::vector<std::pair<std::string, std::int64_t>> preboot_params_;
-  std::uint32_t silent_ = axis::kLinkTimeoutTicks;
-  std::uint32_t dispatched_ = 0;
 
   // Echo model check.
   std::unique_ptr<model::echo::BoardChecker> checker_;

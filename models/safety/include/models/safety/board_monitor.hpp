@@ -1,0 +1,58 @@
+// The axis safety properties of a running board core (docs/board.md "Safety properties"),
+// checked after every tick from what the board shows (axis states, motor outputs, sampled
+// inputs, counters), not from how it decides:
+//   - every axis state inside its invariant ranges; DIR changes only at or below the start
+//     speed; no step against the DIR state;
+//   - no step toward an active endstop, nor toward one not yet moved away from;
+//   - blocked: the speed never rises, and once stopped not one step until unblocked;
+//   - soft travel limits never crossed once the position is known;
+//   - no jog outlives three silent command periods (frames that feed the watchdog: run, or a
+//     repeat of the last one taken, docs/protocol.md "Delivery");
+//   - a target set from rest is never passed (no overshoot);
+//   - no step while the saved step counter is marked valid.
+// Used by the board fuzz target (aborts on the first) and the simulated board (reports them).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/axis/axis.hpp"
+#include "core/board/board.hpp"
+
+namespace ap::model::safety {
+
+struct Violation {
+  std::uint32_t tick = 0;  // the board's tick count after the tick
+  int axis = -1;           // 0 = X, 1 = Y, -1 = the board
+  const char* what = "";
+};
+
+class BoardMonitor {
+ public:
+  // After boot() of a (new) board: endstops active at power-up count as latched.
+  void booted(const board::Board& b);
+  // Right before board.tick().
+  void before_tick(const board::Board& b);
+  // Right after it: appends this tick's violations.
+  void after_tick(const board::Board& b, std::vector<Violation>& out);
+
+ private:
+  struct AxisWatch {
+    bool latch_min = false;
+    bool latch_max = false;
+    bool blocked_stopped = false;
+    bool tracking = false;  // a move started from rest toward `target`
+    std::int32_t target = 0;
+    int side = 0;
+  };
+  void check_axis(const board::Board& b, std::size_t a, bool mech_changed, std::vector<Violation>& out);
+
+  std::array<AxisWatch, board::kAxes> w_{};
+  std::array<axis::State, board::kAxes> before_{};
+  axis::Mechanics mech_{};
+  std::uint32_t silent_ = axis::kLinkTimeoutTicks;
+  std::uint32_t fed_ = 0;
+};
+
+}  // namespace ap::model::safety

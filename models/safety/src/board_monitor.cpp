@@ -1,0 +1,104 @@
+#include "models/safety/board_monitor.hpp"
+
+#include "core/axis/watchdog.hpp"
+
+namespace ap::model::safety {
+
+namespace {
+
+bool same_mechanics(const axis::Mechanics& a, const axis::Mechanics& b) {
+  return a.pitch_um == b.pitch_um && a.steps_per_rev == b.steps_per_rev && a.microsteps == b.microsteps;
+}
+
+// Frames that feed the link watchdog: run, or a repeat of the last one taken.
+std::uint32_t fed(const board::Board& b) { return b.counters().dispatched_frames + b.counters().repeated_frames; }
+
+}  // namespace
+
+void BoardMonitor::booted(const board::Board& b) {
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    w_[a] = AxisWatch{};
+    w_[a].latch_min = b.inputs().endstop_min[a] != 0;
+    w_[a].latch_max = b.inputs().endstop_max[a] != 0;
+  }
+  silent_ = axis::kLinkTimeoutTicks;
+  fed_ = fed(b);
+}
+
+void BoardMonitor::before_tick(const board::Board& b) {
+  for (std::size_t a = 0; a < board::kAxes; ++a) before_[a] = b.axis_state(static_cast<board::Axis>(a));
+  mech_ = b.mechanics();
+}
+
+void BoardMonitor::after_tick(const board::Board& b, std::vector<Violation>& out) {
+  const std::uint32_t f = fed(b);
+  silent_ = f != fed_ ? 0 : silent_ + 1;
+  fed_ = f;
+  const bool mech_changed = !same_mechanics(b.mechanics(), mech_);
+  bool any_steps = false;
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    check_axis(b, a, mech_changed, out);
+    any_steps = any_steps || b.motor_output(static_cast<board::Axis>(a)).steps > 0;
+  }
+  // The saved step counter is never marked valid while the carriage moves.
+  if (any_steps && b.store().current().step_counts_valid) out.push_back({b.ticks(), -1, "step while the saved counter is valid"});
+}
+
+void BoardMonitor::check_axis(const board::Board& b, std::size_t a, bool mech_changed, std::vector<Violation>& out) {
+  const auto ax = static_cast<board::Axis>(a);
+  const int ai = static_cast<int>(a);
+  const std::uint32_t t = b.ticks();
+  const axis::State& p = before_[a];
+  const axis::State& n = b.axis_state(ax);
+  const axis::Config& c = b.axis_config(ax);
+  const board::MotorOutput& o = b.motor_output(ax);
+  const board::Inputs& in = b.inputs();
+  AxisWatch& x = w_[a];
+  auto bad = [&](const char* what) { out.push_back({t, ai, what}); };
+  if (!axis::state_valid(n)) bad("axis state out of its invariant ranges");
+  // DIR changes only at or below the start speed (a reversal decelerates first).
+  if (n.dir != p.dir && p.v > c.v_start * axis::kSpeedScale) bad("DIR flipped above the start speed");
+  if (o.steps > 0 && o.dir != n.dir) bad("steps emitted against the DIR state");
+  // No step toward an active endstop, nor toward one not yet moved away from.
+  if (in.endstop_min[a] != 0) x.latch_min = true;
+  if (in.endstop_max[a] != 0) x.latch_max = true;
+  if (o.steps > 0) {
+    if (o.dir < 0 && x.latch_min) bad("step toward an active min endstop");
+    if (o.dir > 0 && x.latch_max) bad("step toward an active max endstop");
+    if (o.dir > 0 && in.endstop_min[a] == 0) x.latch_min = false;
+    if (o.dir < 0 && in.endstop_max[a] == 0) x.latch_max = false;
+  }
+  // Blocked: brake only; once stopped, not one step until unblocked.
+  if (b.block() == board::Block::None) {
+    x.blocked_stopped = false;
+  } else {
+    if (n.v > p.v) bad("speed increased while blocked");
+    if (x.blocked_stopped && (o.steps != 0 || n.v != 0)) bad("step while blocked after the stop");
+    x.blocked_stopped = x.blocked_stopped || n.v == 0;
+  }
+  if (mech_changed) {
+    x.tracking = false;
+    return;
+  }
+  // Soft limits are never crossed once the position is known.
+  if (p.homed != 0 && n.homed != 0 && p.pos >= c.soft_min && p.pos <= c.soft_max &&
+      (n.pos < c.soft_min || n.pos > c.soft_max)) {
+    bad("soft travel limit crossed");
+  }
+  // The link watchdog: no jog outlives 3 silent command periods.
+  if (silent_ >= axis::kLinkTimeoutTicks && n.mode == axis::Mode::Jog) bad("jog still running after the link watchdog period");
+  // A target set from rest is reachable: it must never be passed.
+  const bool new_move = n.mode == axis::Mode::Position && (p.mode != axis::Mode::Position || p.target != n.target);
+  if (new_move) {
+    x.tracking = p.v == 0;
+    x.target = n.target;
+    x.side = p.pos > n.target ? 1 : (p.pos < n.target ? -1 : 0);
+  }
+  if (!x.tracking) return;
+  const int side = n.pos > x.target ? 1 : (n.pos < x.target ? -1 : 0);
+  if (side != 0 && x.side != 0 && side != x.side) bad("reachable target passed");
+  if (side != 0) x.side = side;
+  if (n.mode != axis::Mode::Position || n.target != x.target) x.tracking = false;
+}
+
+}  // namespace ap::model::safety
