@@ -35,7 +35,7 @@ const std::string kHead = "scenario t\nduration 10 s\n";
 }  // namespace
 
 TEST(dds_scenario, BundledScenariosParseAndRoundTrip) {
-  // issue 9 item 7: the bundled scenarios; the link-fault regressions of docs/protocol.md
+  // The bundled scenarios (docs/scenarios.md); the link-fault regressions of docs/protocol.md
   // "Delivery" (scenarios/regressions/, where shrunk storms join them).
   const std::set<std::string> expected{"absolute_20mm",  "manual_reversal", "accel_save_reboot",
                                        "ihold_irun",     "endstop_hit",     "battery_charger_blocking",
