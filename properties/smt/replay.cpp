@@ -13,67 +13,6 @@ namespace smt_replay {
 
 namespace ax = ap::axis;
 
-bool parse(const std::string& path, Case& out, std::string& error) {
-  std::ifstream f(path);
-  if (!f) {
-    error = "cannot open " + path;
-    return false;
-  }
-  out = Case{};
-  out.file = path;
-  std::string line;
-  while (std::getline(f, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream in(line);
-    std::string key;
-    in >> key;
-    if (key == "obligation") {
-      in >> out.obligation;
-    } else if (key == "kind") {
-      in >> out.kind;
-    } else if (key == "timer") {
-      in >> out.timer_f;
-    } else if (key == "run") {
-      in >> out.run;
-    } else if (key == "config") {
-      auto& c = out.config;
-      in >> c.v_start >> c.v_slow >> c.v_fast >> c.accel >> c.soft_min >> c.soft_max >> c.home_travel >> c.home_position;
-    } else if (key == "state") {
-      int p = 0, m = 0, d = 0, j = 0, l = 0, a = 0, b = 0, h = 0;
-      auto& s = out.state;
-      in >> p >> m >> d >> j >> l >> a >> b >> h >> s.pos >> s.target >> s.v >> s.frac;
-      s.phase = static_cast<ax::Phase>(p);
-      s.mode = static_cast<ax::Mode>(m);
-      s.dir = static_cast<std::int8_t>(d);
-      s.jog_dir = static_cast<std::int8_t>(j);
-      s.level = static_cast<std::uint8_t>(l);
-      s.latch_min = static_cast<std::uint8_t>(a);
-      s.latch_max = static_cast<std::uint8_t>(b);
-      s.homed = static_cast<std::uint8_t>(h);
-    } else if (key == "input") {
-      int k = 0, d = 0, l = 0, emin = 0, emax = 0, bl = 0, la = 0;
-      ax::Input x;
-      in >> k >> d >> l >> x.cmd.value >> emin >> emax >> bl >> la;
-      x.cmd.kind = static_cast<ax::CmdKind>(k);
-      x.cmd.dir = static_cast<std::int8_t>(d);
-      x.cmd.level = static_cast<std::uint8_t>(l);
-      x.endstop_min = static_cast<std::uint8_t>(emin);
-      x.endstop_max = static_cast<std::uint8_t>(emax);
-      x.blocked = static_cast<std::uint8_t>(bl);
-      x.link_alive = static_cast<std::uint8_t>(la);
-      out.inputs.push_back(x);
-    } else {
-      error = "unknown line: " + line;
-      return false;
-    }
-    if (in.fail()) {
-      error = "bad line: " + line;
-      return false;
-    }
-  }
-  return true;
-}
-
 namespace {
 
 // Reference stopping distance (fine units): the sum of the braking ticks above the start

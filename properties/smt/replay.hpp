@@ -1,26 +1,18 @@
 #pragma once
-// Replays a counterexample case written by `axisproof prove` (models/smt/axis_obligations.hpp
-// gives the format) through the REAL step() / step_timer() and checks the physical claims the
-// obligations make. Independent of the Z3 encoding: it links only core/axis.
+// Replays a counterexample case written by `axisproof prove` (models/smt/replay_case.hpp: the
+// format, its writer and its reader) through the REAL step() / step_timer() and checks the
+// physical claims the obligations make. Independent of the Z3 encoding: it links only core/axis
+// and the case format (ap_smt_case).
 #include <string>
 #include <vector>
 
 #include "core/axis/axis.hpp"
+#include "models/smt/replay_case.hpp"
 
 namespace smt_replay {
 
-struct Case {
-  std::string file;
-  std::string obligation;
-  std::string kind = "motion";
-  ap::axis::Config config{};
-  ap::axis::State state{};
-  std::vector<ap::axis::Input> inputs;
-  int run = 0;
-  unsigned timer_f = 0;
-};
-
-bool parse(const std::string& path, Case& out, std::string& error);
+// The case format and its reader are models/smt/replay_case.hpp (next to the writer).
+using Case = ap::smt::ReplayCase;
 // Every violated claim, one line each ("" when the case passes).
 std::string violations(const Case& c);
 std::vector<std::string> case_files(const std::string& dir);

@@ -220,7 +220,8 @@ void Board::handle(const frame::RawCommandFramer::Event& e) {
   // The frame arrived intact; the callback table decides whether it means anything (an ID
   // outside the table, data out of range, an empty slot). Such a frame is rejected like a
   // malformed one, blocked or not.
-  if (const frame::Rejection r = table_.lookup(e.frame).rejection; !r.ok()) {
+  const frame::Lookup found = table_.lookup(e.frame);
+  if (const frame::Rejection r = found.rejection; !r.ok()) {
     ++counters_.unhandled_frames;
     echoes_[echo_count_++] = PendingEcho{true, r, last_seq_, {}, false};
     return;
@@ -252,12 +253,7 @@ void Board::handle(const frame::RawCommandFramer::Event& e) {
     echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs, false};
     return;
   }
-  const frame::DispatchResult r = table_.dispatch(e.frame, this);
-  if (!r.rejection.ok()) {
-    ++counters_.unhandled_frames;
-    echoes_[echo_count_++] = PendingEcho{true, r.rejection, last_seq_, {}, false};
-    return;
-  }
+  const frame::DispatchResult r = table_.dispatch(found, e.frame, this);
   ++counters_.dispatched_frames;
   if (r.x == HandlerStatus::Refused) ++counters_.refused_parts;
   if (r.y == HandlerStatus::Refused) ++counters_.refused_parts;

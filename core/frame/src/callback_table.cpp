@@ -50,9 +50,8 @@ Lookup CallbackTable::lookup(const CommandFrame& frame) const {
   return out;
 }
 
-DispatchResult CallbackTable::dispatch(const CommandFrame& frame, void* ctx) const {
+DispatchResult CallbackTable::dispatch(const Lookup& l, const CommandFrame& frame, void* ctx) const {
   DispatchResult result;
-  const Lookup l = lookup(frame);
   if (!l.rejection.ok()) {
     result.rejection = l.rejection;
     return result;

@@ -34,40 +34,6 @@ using axis::SymState;
 
 // ---- case files and traces -------------------------------------------------------------
 
-std::string format_case(const ReplayCase& k) {
-  std::ostringstream o;
-  o << "# written by axisproof prove; replayed by properties/smt/smt_replay_test.cpp\n";
-  o << "obligation " << k.obligation << "\nkind " << k.kind << "\n";
-  if (k.kind == "timer") {
-    o << "timer " << k.timer_f << "\n";
-    return o.str();
-  }
-  if (k.kind == "table" || k.kind == "watchdog") return o.str();  // the replay checks the whole function
-  const auto& c = k.config;
-  o << "config " << c.v_start << ' ' << c.v_slow << ' ' << c.v_fast << ' ' << c.accel << ' ' << c.soft_min << ' '
-    << c.soft_max << ' ' << c.home_travel << ' ' << c.home_position << "\n";
-  const auto& s = k.state;
-  o << "state " << int(s.phase) << ' ' << int(s.mode) << ' ' << int(s.dir) << ' ' << int(s.jog_dir) << ' '
-    << int(s.level) << ' ' << int(s.latch_min) << ' ' << int(s.latch_max) << ' ' << int(s.homed) << ' ' << s.pos
-    << ' ' << s.target << ' ' << s.v << ' ' << s.frac << "\n";
-  for (const auto& in : k.inputs) {
-    o << "input " << int(in.cmd.kind) << ' ' << int(in.cmd.dir) << ' ' << int(in.cmd.level) << ' ' << in.cmd.value
-      << ' ' << int(in.endstop_min) << ' ' << int(in.endstop_max) << ' ' << int(in.blocked) << ' '
-      << int(in.link_alive) << "\n";
-  }
-  o << "run " << k.run << "\n";
-  return o.str();
-}
-
-std::string write_case(const ReplayCase& k) {
-  const char* env = std::getenv("AP_PROVE_OUT");
-  const std::filesystem::path dir = env != nullptr ? std::filesystem::path(env) : std::filesystem::path("out/prove");
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  const std::filesystem::path file = dir / (k.obligation + ".case");
-  std::ofstream(file) << format_case(k);
-  return file.string();
-}
 
 std::string format_trace(const ax::Config& c, const std::vector<ax::State>& st, const std::vector<ax::Input>& in,
                          const std::vector<ax::Output>& out) {

@@ -57,7 +57,10 @@ class CallbackTable {
 
   // Everything dispatch() checks, without running anything.
   Lookup lookup(const CommandFrame& frame) const;
-  DispatchResult dispatch(const CommandFrame& frame, void* ctx) const;
+  // Runs the handlers `l` found for `frame`, X then Y; nothing when `l` is a rejection. The
+  // board looks a frame up once, decides (blocked, seq) and then runs this.
+  DispatchResult dispatch(const Lookup& l, const CommandFrame& frame, void* ctx) const;
+  DispatchResult dispatch(const CommandFrame& frame, void* ctx) const { return dispatch(lookup(frame), frame, ctx); }
 
  private:
   static bool in_range(std::uint32_t id);
