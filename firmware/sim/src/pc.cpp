@@ -241,6 +241,12 @@ class Pc {
     }
   }
 
+  void release_and_submit(BoardPc& b, AxisPc& x, client::Part part, CommandId id, std::int32_t data, std::int64_t t) {
+    x.jog = 0;
+    x.jogging = false;
+    submit(b, part, id, data, t);
+  }
+
   void apply(const sc::Action& a, std::int64_t t) {
     for (auto& bp : boards_) {
       BoardPc& b = *bp;
@@ -256,26 +262,11 @@ class Pc {
           x.jogging = true;
           submit(b, part, CommandId::Jog, x.jog, t);
           break;
-        case sc::Verb::stop:
-          x.jog = 0;
-          x.jogging = false;
-          submit(b, part, CommandId::Stop, 0, t);
-          break;
-        case sc::Verb::go_to:
-          x.jog = 0;
-          x.jogging = false;
-          submit(b, part, CommandId::Goto, um(a), t);
-          break;
-        case sc::Verb::move:
-          x.jog = 0;
-          x.jogging = false;
-          submit(b, part, CommandId::Move, um(a), t);
-          break;
-        case sc::Verb::home:
-          x.jog = 0;
-          x.jogging = false;
-          submit(b, part, CommandId::Home, 0, t);
-          break;
+        // Any other command of the axis releases the held key.
+        case sc::Verb::stop: release_and_submit(b, x, part, CommandId::Stop, 0, t); break;
+        case sc::Verb::go_to: release_and_submit(b, x, part, CommandId::Goto, um(a), t); break;
+        case sc::Verb::move: release_and_submit(b, x, part, CommandId::Move, um(a), t); break;
+        case sc::Verb::home: release_and_submit(b, x, part, CommandId::Home, 0, t); break;
         case sc::Verb::set_speed:
           submit(b, client::Part::Unit, a.word == "fast" ? CommandId::SetFastSpeed : CommandId::SetSlowSpeed, um(a), t);
           if (a.word == "fast") mech_.fast_um_s = um(a);
@@ -729,14 +720,24 @@ class Pc {
       if (!viol.empty() && viol[0] != '0') fail("safety (board-side monitor, every tick): board " + std::to_string(b.id) + ": " + viol);
       b.verdict.lost_step_risks = static_cast<std::uint64_t>(std::stoull(env(b, "probe lost_steps", t)));
       finish_echo_checks(b, t);
+      // The client's counters, as the verdict reports them.
       const client::ClientCounters& c = b.client->counters();
-      b.verdict.commands = c.sent;
-      b.verdict.echoes = c.answered;
-      b.verdict.lost = c.timeouts;
-      b.verdict.rejected = c.rejected;
-      b.verdict.malformed = c.malformed;
-      b.verdict.unexpected = c.resyncs;
-      b.verdict.duplicates = c.late;
+      BoardVerdict& v = b.verdict;
+      v.commands = c.sent;
+      v.echoes = c.answered;
+      v.lost = c.timeouts;
+      v.rejected = c.rejected;
+      v.malformed = c.malformed;
+      v.unexpected = c.resyncs;
+      v.duplicates = c.late;
+      v.delivery.submitted = c.commands;
+      v.delivery.delivered = c.delivered;
+      v.delivery.failed = c.failed;
+      v.delivery.frames_answered = b.answered_frames;
+      v.delivery.given_up = c.given_up;
+      v.delivery.retransmissions = c.retransmissions;
+      v.delivery.new_frames = c.new_frames;
+      v.delivery.reports = b.reports;
       finish_delivery_check(b, t);
     }
     for (auto& bp : boards_) {
@@ -752,14 +753,6 @@ class Pc {
     const std::string who = "delivery: board " + std::to_string(b.id);
     const client::ClientCounters& c = b.client->counters();
     BoardVerdict& v = b.verdict;
-    v.delivery.submitted = c.commands;
-    v.delivery.delivered = c.delivered;
-    v.delivery.failed = c.failed;
-    v.delivery.frames_answered = b.answered_frames;
-    v.delivery.given_up = c.given_up;
-    v.delivery.retransmissions = c.retransmissions;
-    v.delivery.new_frames = c.new_frames;
-    v.delivery.reports = b.reports;
     std::istringstream in(env(b, "probe taken", t));
     std::uint64_t taken = 0, digest = 0;
     if (!(in >> taken >> digest)) {
