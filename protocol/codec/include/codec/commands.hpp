@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "codec/id_table.hpp"
 #include "codec/range.hpp"
 
 namespace ap::codec {
@@ -76,26 +77,12 @@ struct CommandInfo {
 
 inline constexpr std::size_t kCommandCount = kCommands.size();
 
-constexpr const CommandInfo* find_command(std::uint32_t id) {
-  return id < kCommands.size() ? &kCommands[id] : nullptr;
-}
-
-constexpr const CommandInfo* find_command(std::string_view key) {
-  for (const auto& c : kCommands) {
-    if (c.key == key) return &c;
-  }
-  return nullptr;
-}
+constexpr const CommandInfo* find_command(std::uint32_t id) { return find_by_id(kCommands, id); }
+constexpr const CommandInfo* find_command(std::string_view key) { return find_by_key(kCommands, key); }
 
 constexpr const CommandInfo& info(CommandId id) { return kCommands[static_cast<std::size_t>(id)]; }
 
-constexpr bool commands_dense() {
-  for (std::size_t i = 0; i < kCommands.size(); ++i) {
-    if (static_cast<std::size_t>(kCommands[i].id) != i) return false;
-  }
-  return true;
-}
-static_assert(commands_dense(), "command table is indexed by ID");
+static_assert(dense<&CommandInfo::id>(kCommands), "command table is indexed by ID");
 static_assert(kCommands.size() <= 100, "command IDs are two decimal digits");
 
 }  // namespace ap::codec

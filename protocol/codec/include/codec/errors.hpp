@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "codec/id_table.hpp"
+
 namespace ap::codec {
 
 enum class FrameError : std::uint8_t {
@@ -44,16 +46,10 @@ inline constexpr std::array kFrameErrors = {
 };
 
 constexpr std::string_view error_key(FrameError e) {
-  const auto i = static_cast<std::size_t>(e);
-  return i < kFrameErrors.size() ? kFrameErrors[i].key : std::string_view{"?"};
+  const FrameErrorInfo* i = find_by_id(kFrameErrors, static_cast<std::uint32_t>(e));
+  return i != nullptr ? i->key : std::string_view{"?"};
 }
 
-constexpr bool errors_table_dense() {
-  for (std::size_t i = 0; i < kFrameErrors.size(); ++i) {
-    if (static_cast<std::size_t>(kFrameErrors[i].error) != i) return false;
-  }
-  return true;
-}
-static_assert(errors_table_dense(), "kFrameErrors is indexed by FrameError");
+static_assert(dense<&FrameErrorInfo::error>(kFrameErrors), "kFrameErrors is indexed by FrameError");
 
 }  // namespace ap::codec

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "codec/id_table.hpp"
 #include "codec/range.hpp"
 
 namespace ap::codec {
@@ -65,23 +66,9 @@ inline constexpr Range kPositionRange{-99999, 999999};
 
 inline constexpr std::size_t kStatusCount = kStatuses.size();
 
-constexpr const StatusInfo* find_status(std::uint32_t id) {
-  return id < kStatuses.size() ? &kStatuses[id] : nullptr;
-}
+constexpr const StatusInfo* find_status(std::uint32_t id) { return find_by_id(kStatuses, id); }
+constexpr const StatusInfo* find_status(std::string_view key) { return find_by_key(kStatuses, key); }
 
-constexpr const StatusInfo* find_status(std::string_view key) {
-  for (const auto& s : kStatuses) {
-    if (s.key == key) return &s;
-  }
-  return nullptr;
-}
-
-constexpr bool statuses_dense() {
-  for (std::size_t i = 0; i < kStatuses.size(); ++i) {
-    if (static_cast<std::size_t>(kStatuses[i].id) != i) return false;
-  }
-  return true;
-}
-static_assert(statuses_dense(), "status table is indexed by ID");
+static_assert(dense<&StatusInfo::id>(kStatuses), "status table is indexed by ID");
 
 }  // namespace ap::codec

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "codec/id_table.hpp"
 #include "codec/range.hpp"
 
 namespace ap::codec {
@@ -53,23 +54,9 @@ struct SubscriberInfo {
 
 inline constexpr std::size_t kSubscriberCount = kSubscribers.size();
 
-constexpr const SubscriberInfo* find_subscriber(std::uint32_t id) {
-  return id < kSubscribers.size() ? &kSubscribers[id] : nullptr;
-}
+constexpr const SubscriberInfo* find_subscriber(std::uint32_t id) { return find_by_id(kSubscribers, id); }
+constexpr const SubscriberInfo* find_subscriber(std::string_view key) { return find_by_key(kSubscribers, key); }
 
-constexpr const SubscriberInfo* find_subscriber(std::string_view key) {
-  for (const auto& s : kSubscribers) {
-    if (s.key == key) return &s;
-  }
-  return nullptr;
-}
-
-constexpr bool subscribers_dense() {
-  for (std::size_t i = 0; i < kSubscribers.size(); ++i) {
-    if (static_cast<std::size_t>(kSubscribers[i].id) != i) return false;
-  }
-  return true;
-}
-static_assert(subscribers_dense(), "subscriber table is indexed by ID");
+static_assert(dense<&SubscriberInfo::id>(kSubscribers), "subscriber table is indexed by ID");
 
 }  // namespace ap::codec
