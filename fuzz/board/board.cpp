@@ -38,7 +38,6 @@
 #include <vector>
 
 #include "board_rig.hpp"
-#include "models/safety/board_monitor.hpp"
 #include "codec/commands.hpp"
 #include "codec/layout.hpp"
 #include "codec/subscribers.hpp"
@@ -46,6 +45,7 @@
 #include "core/frame/fields.hpp"
 #include "core/tmc2130/fields.hpp"
 #include "models/echo/board_checker.hpp"
+#include "models/safety/board_monitor.hpp"
 #include "../script_reader.hpp"
 
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size)

@@ -354,13 +354,12 @@ void Board::check_drivers() {
 }
 
 void Board::send_echoes() {
-  const frame::EchoSource source{this, &Board::echo_axis, &Board::echo_subscriber};
+  const frame::EchoSource now{this, &Board::echo_axis, &Board::echo_subscriber};
+  const frame::EchoSource replay{this, &Board::echo_axis_replay, &Board::echo_subscriber};
   for (std::size_t k = 0; k < echo_count_; ++k) {
     const PendingEcho& p = echoes_[k];
-    building_replay_ = p.replay;
-    const frame::EchoFrame echo =
-        p.rejected ? frame::build_rejection_echo(p.seq, p.rejection) : frame::build_echo(p.seq, p.subs, source);
-    building_replay_ = false;
+    const frame::EchoFrame echo = p.rejected ? frame::build_rejection_echo(p.seq, p.rejection)
+                                             : frame::build_echo(p.seq, p.subs, p.replay ? replay : now);
     std::array<std::uint8_t, c::kEchoLength> out{};
     // build_* clamp every value into its table range, so formatting cannot fail.
     if (!frame::format_echo(echo, out).ok()) continue;
@@ -461,11 +460,12 @@ std::int32_t Board::subscriber(frame::SubscriberSlot slot) {
   return 0;
 }
 
-frame::AxisEcho Board::echo_axis(void* ctx, Axis a) {
-  const auto* b = static_cast<const Board*>(ctx);
-  if (!b->building_replay_) return b->axis_echo(a);
+frame::AxisEcho Board::echo_axis(void* ctx, Axis a) { return static_cast<const Board*>(ctx)->axis_echo(a); }
+
+frame::AxisEcho Board::echo_axis_replay(void* ctx, Axis a) {
   // A repeated or older frame: the state now, with the refusals and the block of the last
   // frame taken (a block that is still on shows anyway).
+  const auto* b = static_cast<const Board*>(ctx);
   const std::size_t i = idx(a);
   const Block block = b->block_ != Block::None ? b->block_ : b->last_outcome_.block;
   return b->echo_of(i, block, b->last_outcome_.refused[i]);

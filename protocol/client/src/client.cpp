@@ -72,11 +72,11 @@ Ticket Client::submit(const Command& cmd, std::int64_t now_us) {
   frame::CommandFrame probe;
   (cmd.part == Part::Y ? probe.y : probe.x) = cmd.cmd;
   if (!format(probe)) {
-    fail(p, Outcome::Invalid, now_us, nullptr);
+    report(p, Outcome::Invalid, now_us, nullptr, nullptr);
     return p.ticket;
   }
   if (link_down_) {
-    fail(p, Outcome::LinkDown, now_us, nullptr);
+    report(p, Outcome::LinkDown, now_us, nullptr, nullptr);
     return p.ticket;
   }
   if (!is_stop(cmd)) {
@@ -88,7 +88,7 @@ Ticket Client::submit(const Command& cmd, std::int64_t now_us) {
   // user just stopped. The frame in flight is not touched: it may already have run.
   for (auto it = queue_.begin(); it != queue_.end();) {
     if (it->command.part == cmd.part && moves_axis(it->command.cmd.id)) {
-      fail(*it, Outcome::Superseded, now_us, nullptr);
+      report(*it, Outcome::Superseded, now_us, nullptr, nullptr);
       it = queue_.erase(it);
     } else {
       ++it;
@@ -128,8 +128,8 @@ std::optional<std::string> Client::poll(std::int64_t now_us, const Extras& extra
     ++counters_.given_up;
     const InFlight gone = std::move(f);
     in_flight_.reset();
-    for (const Pending& p : gone.commands) fail(p, Outcome::Unconfirmed, now_us, &gone);
-    for (const Pending& p : queue_) fail(p, Outcome::LinkDown, now_us, nullptr);
+    for (const Pending& p : gone.commands) report(p, Outcome::Unconfirmed, now_us, &gone, nullptr);
+    for (const Pending& p : queue_) report(p, Outcome::LinkDown, now_us, nullptr, nullptr);
     queue_.clear();
     link_down_ = true;
   }
@@ -197,7 +197,7 @@ std::string Client::send(std::int64_t now_us) {
   return f.bytes;
 }
 
-void Client::fail(const Pending& p, Outcome o, std::int64_t now_us, const InFlight* f) {
+void Client::report(const Pending& p, Outcome o, std::int64_t now_us, const InFlight* f, const frame::AxisEcho* part) {
   Report r;
   r.ticket = p.ticket;
   r.command = p.command;
@@ -209,10 +209,10 @@ void Client::fail(const Pending& p, Outcome o, std::int64_t now_us, const InFlig
     r.first_sent_us = f->first_sent_us;
     r.transmissions = f->transmissions;
   }
-  report(p, r);
-}
-
-void Client::report(const Pending& p, Report r) {
+  if (part != nullptr) {
+    r.status = part->status;
+    r.data = part->data;
+  }
   const bool ok = delivered(r.outcome);
   (ok ? counters_.delivered : counters_.failed) += 1;
   reports_.push_back(r);
@@ -231,20 +231,10 @@ void Client::settle(const frame::EchoFrame& echo, std::int64_t now_us) {
   ++counters_.answered;
   for (std::size_t j = 0; j < f.commands.size(); ++j) {
     const frame::AxisEcho& part = f.part_of[j] == 0 ? echo.x : echo.y;
-    Report r;
-    r.ticket = f.commands[j].ticket;
-    r.command = f.commands[j].command;
-    r.outcome = part.status == c::EchoStatus::CommandRefused ? Outcome::Refused
-                : blocked_status(part.status)                 ? Outcome::Blocked
-                                                              : Outcome::Done;
-    r.seq = f.frame.seq;
-    r.issued_us = f.commands[j].issued_us;
-    r.first_sent_us = f.first_sent_us;
-    r.settled_us = now_us;
-    r.transmissions = f.transmissions;
-    r.status = part.status;
-    r.data = part.data;
-    report(f.commands[j], r);
+    const Outcome o = part.status == c::EchoStatus::CommandRefused ? Outcome::Refused
+                      : blocked_status(part.status)                 ? Outcome::Blocked
+                                                                    : Outcome::Done;
+    report(f.commands[j], o, now_us, &f, &part);
   }
 }
 

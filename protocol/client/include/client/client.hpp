@@ -108,7 +108,7 @@ struct ClientCounters {
   std::uint32_t given_up = 0;         // frames that ran out of transmissions
   std::uint32_t commands = 0;         // submitted
   std::uint32_t delivered = 0;        // Done + Refused + Blocked
-  std::uint32_t failed = 0;           // Superseded + Unconfirmed + LinkDown
+  std::uint32_t failed = 0;           // Superseded + Unconfirmed + LinkDown + Invalid
 };
 
 class Client {
@@ -159,8 +159,9 @@ class Client {
   void start_frame(std::int64_t now_us, const Extras& extras);
   std::string send(std::int64_t now_us);
   void settle(const frame::EchoFrame& echo, std::int64_t now_us);
-  void fail(const Pending& p, Outcome o, std::int64_t now_us, const InFlight* f);
-  void report(const Pending& p, Report r);
+  // Settles one command (and the stops riding with it): `f` its frame if it went out, `part`
+  // its part of the answering echo.
+  void report(const Pending& p, Outcome o, std::int64_t now_us, const InFlight* f, const frame::AxisEcho* part);
   std::int64_t retransmit_interval() const;
   EchoEvent classify(const frame::EchoFramer::Event& e, std::int64_t now_us);
 

@@ -160,7 +160,6 @@ class Board {
   // The seq of the last frame taken (docs/protocol.md "Delivery"); none since power-up until
   // the first one.
   std::uint16_t last_seq() const { return last_seq_; }
-  bool have_seq() const { return have_seq_; }
   // Bytes received but not yet framed, and bytes of a frame the framer holds so far.
   std::size_t rx_pending() const { return rx_count_; }
   std::size_t framer_pending() const { return framer_.pending(); }
@@ -220,6 +219,7 @@ class Board {
   static frame::HandlerStatus on_save(void*, Axis, std::int32_t);
   static frame::HandlerStatus on_clear(void*, Axis, std::int32_t);
   static frame::AxisEcho echo_axis(void* ctx, Axis a);
+  static frame::AxisEcho echo_axis_replay(void* ctx, Axis a);
   static std::int32_t echo_subscriber(void* ctx, frame::SubscriberSlot slot);
 
   Hardware hw_;
@@ -259,7 +259,6 @@ class Board {
   bool have_seq_ = false;
   bool taken_this_cycle_ = false;
   Outcome last_outcome_{};
-  bool building_replay_ = false;
   std::uint32_t ticks_ = 0;
   BoardCounters counters_{};
 };
