@@ -19,8 +19,8 @@
 #include <thread>
 #include <vector>
 
-#include "ap/dds/bus.hpp"
-#include "ap/dds/domain.hpp"
+#include "pc/dds/bus.hpp"
+#include "pc/dds/domain.hpp"
 
 extern char** environ;
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "codec/crc16.hpp"
-#include "codec/layout.hpp"
+#include "protocol/codec/crc16.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "core/frame/stream_framer.hpp"

@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "ap/dds/scenario.hpp"
-#include "codec/layout.hpp"
+#include "sim/scenario.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/command_codec.hpp"
 #include "sim/board.hpp"
 #include "sim/run.hpp"
@@ -15,8 +15,8 @@
 namespace {
 
 void BM_SimScenarioLockstep(benchmark::State& state) {
-  const ap::scenario::Scenario s =
-      ap::scenario::parse_file(std::string(AP_SOURCE_DIR) + "/scenarios/absolute_20mm.scn");
+  const ap::sim::scenario::Scenario s =
+      ap::sim::scenario::parse_file(std::string(AP_SOURCE_DIR) + "/scenarios/absolute_20mm.scn");
   ap::sim::RunOptions o;
   o.out_root = "";
   double vtime = 0, wall = 0, trips = 0;

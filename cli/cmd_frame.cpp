@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "cli.hpp"
-#include "client/client.hpp"
-#include "client/doc_tables.hpp"
-#include "client/readable.hpp"
-#include "codec/layout.hpp"
+#include "pc/client/client.hpp"
+#include "pc/client/doc_tables.hpp"
+#include "pc/client/readable.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "core/frame/stream_framer.hpp"

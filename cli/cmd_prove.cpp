@@ -34,8 +34,8 @@ bool selected(const std::string& name, const std::vector<std::string>& only) {
 
 int prove(const ProveOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
-  std::vector<smt::Obligation> chosen;
-  for (auto& o : smt::all_obligations()) {
+  std::vector<model::smt::Obligation> chosen;
+  for (auto& o : model::smt::all_obligations()) {
     if (selected(o.name, opt.only)) chosen.push_back(std::move(o));
   }
   if (chosen.empty()) {
@@ -43,18 +43,18 @@ int prove(const ProveOptions& opt) {
     return 1;
   }
   const auto timeout_ms = static_cast<unsigned>(opt.timeout_s * 1000.0);
-  std::vector<smt::Outcome> outcomes;
+  std::vector<model::smt::Outcome> outcomes;
   std::size_t width = 10;
   for (const auto& o : chosen) width = std::max(width, o.name.size());
   const int w = static_cast<int>(width);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const auto& o = chosen[i];
-    outcomes.push_back(smt::run(o, timeout_ms));
+    outcomes.push_back(model::smt::run(o, timeout_ms));
     const auto& r = outcomes.back();
     std::printf("[%zu/%zu] %-*s %s %.3f s\n", i + 1, chosen.size(), w, o.name.c_str(),
-                smt::verdict_name(r.verdict), r.seconds);
-    if (r.verdict != smt::Verdict::Proved) {
-      std::printf("    %s: %s\n", r.verdict == smt::Verdict::Failed ? "counterexample" : "reason",
+                model::smt::verdict_name(r.verdict), r.seconds);
+    if (r.verdict != model::smt::Verdict::Proved) {
+      std::printf("    %s: %s\n", r.verdict == model::smt::Verdict::Failed ? "counterexample" : "reason",
                   r.counterexample.c_str());
     }
     std::fflush(stdout);
@@ -63,14 +63,14 @@ int prove(const ProveOptions& opt) {
   std::printf("\n%-*s  %-7s  %8s  %s\n", w, "obligation", "result", "seconds", "method");
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     const auto& r = outcomes[i];
-    std::printf("%-*s  %-7s  %8.3f  %s\n", w, chosen[i].name.c_str(), smt::verdict_name(r.verdict),
+    std::printf("%-*s  %-7s  %8.3f  %s\n", w, chosen[i].name.c_str(), model::smt::verdict_name(r.verdict),
                 r.seconds, chosen[i].method.c_str());
-    proved += r.verdict == smt::Verdict::Proved;
-    failed += r.verdict == smt::Verdict::Failed;
-    unknown += r.verdict == smt::Verdict::Unknown;
+    proved += r.verdict == model::smt::Verdict::Proved;
+    failed += r.verdict == model::smt::Verdict::Failed;
+    unknown += r.verdict == model::smt::Verdict::Unknown;
   }
   for (std::size_t i = 0; i < chosen.size(); ++i) {
-    if (outcomes[i].verdict == smt::Verdict::Failed) {
+    if (outcomes[i].verdict == model::smt::Verdict::Failed) {
       std::printf("\nFAILED %s\n  counterexample: %s\n", chosen[i].name.c_str(),
                   outcomes[i].counterexample.c_str());
     }

@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include "ap/dds/bus.hpp"
-#include "ap/dds/scenario.hpp"
+#include "pc/dds/bus.hpp"
+#include "sim/scenario.hpp"
 #include "sim/run.hpp"
 
 namespace ap::cli {
@@ -94,9 +94,9 @@ void add_sim(CLI::App& app) {
   run->final_callback([] {
     try {
       const std::string path = scenario_path(scen);
-      scenario::Scenario s = scenario::parse_file(path);
+      sim::scenario::Scenario s = sim::scenario::parse_file(path);
       sim::RunOptions o;
-      o.realtime = realtime || s.timing == scenario::Timing::realtime;
+      o.realtime = realtime || s.timing == sim::scenario::Timing::realtime;
       o.join = join;
       if (join && domain < 0) throw std::runtime_error("--join needs --domain");
       if (domain >= 0) o.domain = static_cast<std::uint32_t>(domain);

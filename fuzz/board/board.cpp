@@ -38,9 +38,9 @@
 #include <vector>
 
 #include "board_rig.hpp"
-#include "codec/commands.hpp"
-#include "codec/layout.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/layout.hpp"
+#include "protocol/codec/subscribers.hpp"
 #include "core/axis/watchdog.hpp"
 #include "core/frame/fields.hpp"
 #include "core/tmc2130/fields.hpp"
@@ -56,7 +56,7 @@ namespace {
 using namespace ap;
 using namespace ap::board;
 using ap::board::test::Rig;
-namespace tmc = ap::core::tmc2130;
+namespace tmc = ap::tmc2130;
 
 // Work bounds per input, so one long script cannot stall the run (libFuzzer grows inputs up
 // to 4 KB; the gate passes no -max_len). 0.6 s of board time holds a jog and the whole

@@ -9,8 +9,8 @@
 #include <cstdlib>
 #include <span>
 
-#include "codec/crc16.hpp"
-#include "codec/layout.hpp"
+#include "protocol/codec/crc16.hpp"
+#include "protocol/codec/layout.hpp"
 
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size)
     __attribute__((weak));

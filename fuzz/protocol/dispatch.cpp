@@ -1,8 +1,9 @@
-// Dispatch fuzz target: bytes -> CommandLink (framer, parser, callback table, echo builder).
-// The first byte chooses which command IDs have no handler. Oracles per frame event:
-//   - accepted and both handlers installed: exactly two calls, X then Y, with the frame's data;
-//   - anything else: no call, last_seq and the watchdog untouched, a FRAME_REJECTED echo;
-//   - every echo parses.
+// Dispatch fuzz target: bytes -> stream framer -> callback table, the two halves of the
+// board's receive path (Board::handle; what the board does around them, seq, watchdog and
+// echoes, is the board target's). The first byte chooses which command IDs have no handler.
+// Oracles per frame event:
+//   - intact, valid and both handlers installed: exactly two calls, X then Y, with the data;
+//   - anything else: no call, and a rejection whose echo formats and reads back.
 // Also hand-made frames straight from the bytes: dispatch rejects or calls exactly twice.
 #include <array>
 #include <cstddef>
@@ -11,7 +12,7 @@
 #include <span>
 
 #include "core/frame/callback_table.hpp"
-#include "core/frame/command_link.hpp"
+#include "core/frame/stream_framer.hpp"
 #include "core/frame/echo_builder.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "crc_repair.hpp"
@@ -51,9 +52,6 @@ f::AxisEcho absurd_axis(void* ctx, f::Axis a) {
 }
 std::int32_t absurd_sub(void* ctx, f::SubscriberSlot) { return static_cast<std::int32_t>(static_cast<const Absurd*>(ctx)->sub); }
 
-f::AxisEcho axis_state(void*, f::Axis a) { return {ap::codec::EchoStatus::Idle, a == f::Axis::X ? 1 : 2}; }
-std::int32_t sub_value(void*, f::SubscriberSlot s) { return static_cast<std::int32_t>(s.arg) * 1000003; }
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -66,40 +64,36 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   require(!table.install(f::CallbackTable::kSize, &handler));
   Calls calls;
-  f::CommandLink link(table, &calls, {nullptr, &axis_state, &sub_value});
   const std::span<const std::uint8_t> in(data + 1, size - 1);
-  f::RawCommandFramer shadow;  // a second framer predicts what the link's framer sees
-  for (std::size_t i = 0; i < in.size(); ++i) {
-    const auto event = shadow.push(in[i]);
-    const auto seq_before = link.last_seq();
-    link.tick();
-    const auto ticks_before = link.ticks_since_accepted();
+  f::RawCommandFramer framer;
+  for (const std::uint8_t byte : in) {
+    const auto event = framer.push(byte);
+    if (!event) continue;
     calls = {};
-    int echoes = 0;
-    f::EchoFrame echo{};
-    link.receive(in.subspan(i, 1), [&](std::span<const std::uint8_t, ap::codec::kEchoLength> b) {
-      require(f::parse_echo(b, echo).ok());
-      ++echoes;
-    });
-    if (!event) {
-      require(echoes == 0 && calls.count == 0);
-      continue;
+    f::Rejection rejection = event->rejection;
+    if (rejection.ok()) {
+      const f::Lookup found = table.lookup(event->frame);
+      const f::DispatchResult r = table.dispatch(found, event->frame, &calls);
+      require(r.rejection == found.rejection);
+      rejection = r.rejection;
     }
-    require(echoes == 1);
-    // The link's framer checks syntax and CRC only; the codec's own tables (validate) and
-    // the installed slots decide the rest.
-    const bool handled = event->rejection.ok() && f::validate(event->frame).ok() && table.find(static_cast<std::uint32_t>(event->frame.x.id)) != nullptr &&
+    // The framer checks syntax and CRC only; the codec's own tables (validate) and the
+    // installed slots decide the rest.
+    const bool handled = event->rejection.ok() && f::validate(event->frame).ok() &&
+                         table.find(static_cast<std::uint32_t>(event->frame.x.id)) != nullptr &&
                          table.find(static_cast<std::uint32_t>(event->frame.y.id)) != nullptr;
+    require(handled == rejection.ok());
     if (handled) {
       require(calls.count == 2 && calls.axis[0] == f::Axis::X && calls.axis[1] == f::Axis::Y);
       require(calls.data[0] == event->frame.x.data && calls.data[1] == event->frame.y.data);
-      require(link.last_seq() == event->frame.seq && link.ticks_since_accepted() == 0);
-      require(echo.seq == event->frame.seq && echo.x.data == 1 && echo.y.data == 2);
-    } else {
-      require(calls.count == 0);
-      require(link.last_seq() == seq_before && link.ticks_since_accepted() == ticks_before);
-      require(echo.x.status == ap::codec::EchoStatus::FrameRejected && echo.seq == seq_before);
+      continue;
     }
+    require(calls.count == 0);
+    std::array<std::uint8_t, ap::codec::kEchoLength> out{};
+    require(f::format_echo(f::build_rejection_echo(static_cast<std::uint16_t>(event->frame.seq % 1000U), rejection), out).ok());
+    f::EchoFrame echo{};
+    require(f::parse_echo(out, echo).ok() && echo.x.status == ap::codec::EchoStatus::FrameRejected);
+    require(f::rejection_from_code(echo.x.data) == rejection);
   }
   // Hand-made frame: raw IDs and data, no parser in front.
   if (size >= 11) {

@@ -7,7 +7,7 @@
 #include <span>
 #include <type_traits>
 
-#include "codec/layout.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "crc_repair.hpp"

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <span>
 
-#include "codec/layout.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "core/frame/stream_framer.hpp"

@@ -13,7 +13,7 @@
 
 namespace {
 
-namespace chip = ap::core::tmc2130;
+namespace chip = ap::tmc2130;
 
 struct Feed {
   const std::uint8_t* data;

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "board_rig.hpp"
-#include "codec/statuses.hpp"
+#include "protocol/codec/statuses.hpp"
 
 using namespace ap;
 using namespace ap::board;

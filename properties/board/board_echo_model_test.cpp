@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "board_rig.hpp"
-#include "codec/commands.hpp"
-#include "codec/crc16.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/crc16.hpp"
+#include "protocol/codec/subscribers.hpp"
 #include "models/echo/board_checker.hpp"
 
 using namespace ap;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "board_rig.hpp"
-#include "codec/statuses.hpp"
+#include "protocol/codec/statuses.hpp"
 #include "core/storage/store.hpp"
 #include "core/tmc2130/result.hpp"
 
@@ -19,7 +19,7 @@ using namespace ap::board;
 using ap::board::test::Rig;
 using C = codec::CommandId;
 using S = codec::EchoStatus;
-namespace chip = ap::core::tmc2130;
+namespace chip = ap::tmc2130;
 
 namespace {
 

@@ -2,11 +2,13 @@
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
+#include <algorithm>
 #include <optional>
 
 #include "board_rig.hpp"
-#include "codec/commands.hpp"
-#include "codec/statuses.hpp"
+#include "core/frame/echo_builder.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/statuses.hpp"
 
 using namespace ap;
 using namespace ap::board;
@@ -68,6 +70,15 @@ RC_GTEST_PROP(BoardProps, CorruptedFrameChangesOnlyCountersAndEcho, ()) {
     const auto e = a.last_echo();
     RC_ASSERT(e.has_value());
     RC_ASSERT(e->x.status == codec::EchoStatus::FrameRejected);
+    RC_ASSERT(e->seq == b.board->last_seq());
+  }
+  // When the framer saw the whole frame alone, the echo names the parser's own reason.
+  const auto start = std::count(bytes.begin(), bytes.end(), static_cast<std::uint8_t>('>'));
+  const auto end = std::count(bytes.begin(), bytes.end(), static_cast<std::uint8_t>(';'));
+  if (bytes.front() == '>' && bytes.back() == ';' && start == 1 && end == 1) {
+    const auto e = a.last_echo();
+    RC_ASSERT(e.has_value());
+    RC_ASSERT(frame::rejection_from_code(e->x.data) == frame::parse_command(bytes, parsed));
   }
 }
 

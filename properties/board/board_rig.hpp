@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "codec/layout.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/board/board.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"

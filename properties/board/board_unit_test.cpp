@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "board_rig.hpp"
-#include "codec/statuses.hpp"
+#include "protocol/codec/statuses.hpp"
 #include "core/tmc2130/fields.hpp"
 
 using namespace ap;
@@ -12,7 +12,7 @@ using namespace ap::board;
 using ap::board::test::Rig;
 using C = codec::CommandId;
 using S = codec::EchoStatus;
-namespace tmc = ap::core::tmc2130;
+namespace tmc = ap::tmc2130;
 
 namespace {
 

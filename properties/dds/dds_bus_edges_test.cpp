@@ -1,4 +1,4 @@
-// Edges of the DDS test bus (protocol/dds): domain leases refuse bad and exhausted ranges,
+// Edges of the DDS test bus (pc/dds): domain leases refuse bad and exhausted ranges,
 // a participant on an impossible domain is a typed error, an endpoint with no peer times out
 // (wait_matched false, step() throws), lockstep step() drops stale echoes and refuses an echo
 // from the future, telemetry arrives field-for-field, and a board that goes away leaves the
@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include "ap/dds/bus.hpp"
-#include "ap/dds/domain.hpp"
+#include "pc/dds/bus.hpp"
+#include "pc/dds/domain.hpp"
 
 using namespace std::chrono_literals;
 namespace dds = ap::dds;

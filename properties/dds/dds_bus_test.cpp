@@ -14,8 +14,8 @@
 #include <thread>
 #include <vector>
 
-#include "ap/dds/bus.hpp"
-#include "ap/dds/domain.hpp"
+#include "pc/dds/bus.hpp"
+#include "pc/dds/domain.hpp"
 
 using namespace std::chrono_literals;
 namespace dds = ap::dds;

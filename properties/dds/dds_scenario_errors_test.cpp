@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "ap/dds/scenario.hpp"
+#include "sim/scenario.hpp"
 
-namespace sc = ap::scenario;
+namespace sc = ap::sim::scenario;
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The scenario parser (protocol/dds, ap_scenario) and the bundled scenarios/ files.
+// The scenario parser (pc/dds, ap_scenario) and the bundled scenarios/ files.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
@@ -7,9 +7,9 @@
 #include <set>
 #include <string>
 
-#include "ap/dds/scenario.hpp"
+#include "sim/scenario.hpp"
 
-namespace sc = ap::scenario;
+namespace sc = ap::sim::scenario;
 
 namespace {
 

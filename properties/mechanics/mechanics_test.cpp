@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "ap/model/mechanics.hpp"
+#include "models/mechanics/mechanics.hpp"
 
 namespace mech = ap::model::mechanics;
 

@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "codec/commands.hpp"
-#include "codec/statuses.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/statuses.hpp"
+#include "protocol/codec/subscribers.hpp"
 #include "core/frame/frames.hpp"
 
 namespace ap::test {

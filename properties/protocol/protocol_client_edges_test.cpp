@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "client/client.hpp"
-#include "client/readable.hpp"
+#include "pc/client/client.hpp"
+#include "pc/client/readable.hpp"
 #include "core/frame/echo_builder.hpp"
 #include "core/frame/echo_codec.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "client/client.hpp"
-#include "client/readable.hpp"
+#include "pc/client/client.hpp"
+#include "pc/client/readable.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_builder.hpp"
 

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "client/client.hpp"
-#include "client/readable.hpp"
-#include "codec/crc16.hpp"
-#include "codec/errors.hpp"
+#include "pc/client/client.hpp"
+#include "pc/client/readable.hpp"
+#include "protocol/codec/crc16.hpp"
+#include "protocol/codec/errors.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "core/frame/stream_framer.hpp"

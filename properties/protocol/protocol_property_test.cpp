@@ -5,11 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "client/client.hpp"
-#include "codec/crc16.hpp"
-#include "codec/layout.hpp"
+#include "pc/client/client.hpp"
+#include "protocol/codec/crc16.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/command_codec.hpp"
-#include "core/frame/command_link.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "core/frame/fields.hpp"
 #include "core/frame/stream_framer.hpp"
@@ -177,61 +176,6 @@ void check_bit_errors(const std::string& good, Parse parse) {
 RC_GTEST_PROP(ProtocolProps, EverySingleAndDoubleBitErrorIsRejected, ()) {
   check_bit_errors<f::CommandFrame>(*ap::client::format(*genCommand()), f::parse_command);
   check_bit_errors<f::EchoFrame>(*ap::client::format(*genEcho()), f::parse_echo);
-}
-
-struct Board {
-  std::vector<std::pair<f::Axis, std::int32_t>> calls;
-};
-
-f::HandlerStatus record(void* ctx, f::Axis axis, std::int32_t data) {
-  static_cast<Board*>(ctx)->calls.emplace_back(axis, data);
-  return f::HandlerStatus::Done;
-}
-
-RC_GTEST_PROP(ProtocolProps, RejectedFrameChangesOnlyCountersAndEcho, ()) {
-  f::CallbackTable table;
-  for (std::uint32_t id = 0; id < f::CallbackTable::kSize; ++id) table.install(id, &record);
-  Board board;
-  f::CommandLink link(table, &board, {});
-  const auto sink = [](auto) {};
-  const auto first = *ap::client::format(*genCommand());
-  link.receive(bytes_of(first), sink);
-  const auto ticks = *rc::gen::inRange(0, 5);
-  for (int i = 0; i < ticks; ++i) link.tick();
-
-  auto bad = *ap::client::format(*genCommand());
-  const auto at = *rc::gen::inRange<std::size_t>(0, bad.size());
-  bad[at] = *rc::gen::distinctFrom(rc::gen::arbitrary<char>(), bad[at]);
-  f::CommandFrame ignored;
-  const auto expected = f::parse_command(bytes_of(bad), ignored);
-  RC_PRE(!expected.ok());
-  RC_PRE(bad[0] == '>');  // otherwise the framer sees garbage, not a frame, and says nothing
-
-  const auto calls_before = board.calls;
-  const auto seq_before = link.last_seq();
-  const auto counters_before = link.counters();
-  std::vector<std::string> echoes;
-  // A trailing start character flushes a frame the framer saw cut short.
-  link.receive(bytes_of(bad + ">"), [&](auto b) { echoes.push_back(ap::client::to_string(b)); });
-
-  RC_ASSERT(board.calls == calls_before);
-  RC_ASSERT(link.last_seq() == seq_before);
-  RC_ASSERT(link.ticks_since_accepted() == static_cast<std::uint32_t>(ticks));
-  RC_ASSERT(link.counters().framer.accepted_frames == counters_before.framer.accepted_frames);
-  RC_ASSERT(link.counters().framer.rejected_frames > counters_before.framer.rejected_frames);
-  RC_ASSERT(!echoes.empty());
-  for (const auto& e : echoes) {
-    f::EchoFrame echo;
-    RC_ASSERT(f::parse_echo(bytes_of(e), echo).ok());
-    RC_ASSERT(echo.x.status == c::EchoStatus::FrameRejected);
-    RC_ASSERT(echo.seq == seq_before);
-  }
-  // When the framer saw the whole frame, the echo names the parser's own reason.
-  if (bad.find('>', 1) == std::string::npos && bad.find(';') == bad.size() - 1 && bad[0] == '>') {
-    f::EchoFrame echo;
-    RC_ASSERT(f::parse_echo(bytes_of(echoes.front()), echo).ok());
-    RC_ASSERT(f::rejection_from_code(echo.x.data) == expected);
-  }
 }
 
 }  // namespace

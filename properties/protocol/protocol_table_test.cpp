@@ -6,11 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "client/client.hpp"
-#include "client/doc_tables.hpp"
-#include "codec/commands.hpp"
+#include "pc/client/client.hpp"
+#include "pc/client/doc_tables.hpp"
+#include "protocol/codec/commands.hpp"
 #include "core/frame/callback_table.hpp"
-#include "core/frame/command_link.hpp"
 #include "core/frame/echo_builder.hpp"
 
 namespace {
@@ -109,24 +108,6 @@ TEST(ProtocolEchoBuilder, RejectionEchoCarriesReasonAndOffset) {
   EXPECT_EQ(e.y, e.x);
   EXPECT_EQ(f::rejection_from_code(436), (f::Rejection{c::FrameError::BadCrc, 36}));
   EXPECT_EQ(ap::client::format(e).value_or(""), "<042140004361400043600000000000000000000000000000000000000009C77;");
-}
-
-TEST(ProtocolLink, AcceptedFrameRefreshesWatchdogAndAnswers) {
-  const auto t = full_table();
-  Recorder rec;
-  f::CommandLink link(t, &rec, {});
-  link.tick();
-  link.tick();
-  ASSERT_EQ(link.ticks_since_accepted(), 2U);
-  std::vector<std::string> echoes;
-  const std::string frame = *ap::client::format(f::CommandFrame{7, {c::CommandId::Jog, 2}, {}, {}});
-  link.receive(std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(frame.data()), frame.size()),
-               [&](auto bytes) { echoes.push_back(ap::client::to_string(bytes)); });
-  EXPECT_EQ(link.ticks_since_accepted(), 0U);
-  EXPECT_EQ(link.last_seq(), 7);
-  ASSERT_EQ(echoes.size(), 1U);
-  EXPECT_EQ(echoes[0].substr(0, 4), "<007");
-  EXPECT_EQ(rec.calls.size(), 2U);
 }
 
 // Every line of the generated tables must appear verbatim in docs/protocol.md, so the doc

@@ -11,14 +11,14 @@
 #include <string>
 #include <vector>
 
-#include "ap/dds/scenario.hpp"
-#include "ap/model/waveform/svg.hpp"
-#include "ap/model/waveform/vcd.hpp"
-#include "codec/layout.hpp"
+#include "sim/scenario.hpp"
+#include "models/waveform/svg.hpp"
+#include "models/waveform/vcd.hpp"
+#include "protocol/codec/layout.hpp"
 #include "sim/run.hpp"
 
 namespace fs = std::filesystem;
-namespace sc = ap::scenario;
+namespace sc = ap::sim::scenario;
 namespace wf = ap::model::waveform;
 
 namespace {

@@ -29,10 +29,10 @@
 #include <string>
 #include <vector>
 
-#include "ap/dds/scenario.hpp"
+#include "sim/scenario.hpp"
 #include "sim/run.hpp"
 
-namespace sc = ap::scenario;
+namespace sc = ap::sim::scenario;
 namespace cl = ap::client;
 
 namespace {

@@ -12,7 +12,7 @@
 namespace smt_replay {
 
 // The case format and its reader are models/smt/replay_case.hpp (next to the writer).
-using Case = ap::smt::ReplayCase;
+using Case = ap::model::smt::ReplayCase;
 // Every violated claim, one line each ("" when the case passes).
 std::string violations(const Case& c);
 std::vector<std::string> case_files(const std::string& dir);

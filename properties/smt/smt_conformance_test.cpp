@@ -19,7 +19,7 @@
 namespace {
 
 namespace ax = ap::axis;
-namespace sa = ap::smt::axis;
+namespace sa = ap::model::smt::axis;
 
 // Values at and around every range edge, mixed with uniform draws.
 rc::Gen<std::int32_t> edgy(std::int32_t lo, std::int32_t hi) {
@@ -102,7 +102,7 @@ ax::Input gen_input(const ax::State& s) {
 // QF_UFLIA step proofs (speed.max, no_overshoot, watchdog.stop_distance).
 void compare_sem(const ax::State& s, const ax::Input& in, const ax::Config& c, sa::Sem sem) {
   const ax::StepResult want = ax::step(s, in, c);
-  const ax::StepResult got = sa::eval_step(ap::smt::shared_context(), s, in, c, sem);
+  const ax::StepResult got = sa::eval_step(ap::model::smt::shared_context(), s, in, c, sem);
   RC_ASSERT(static_cast<int>(got.out.steps) == static_cast<int>(want.out.steps));
   RC_ASSERT(static_cast<int>(got.out.dir) == static_cast<int>(want.out.dir));
   RC_ASSERT(static_cast<int>(got.out.edge) == static_cast<int>(want.out.edge));
@@ -162,7 +162,7 @@ RC_GTEST_PROP(smt_conformance, encoding_matches_step_along_runs, ()) {
 // Field-by-field comparison for deterministic cases (gtest, not rapidcheck).
 void expect_same_sem(const ax::State& s, const ax::Input& in, const ax::Config& c, const char* what, sa::Sem sem) {
   const ax::StepResult want = ax::step(s, in, c);
-  const ax::StepResult got = sa::eval_step(ap::smt::shared_context(), s, in, c, sem);
+  const ax::StepResult got = sa::eval_step(ap::model::smt::shared_context(), s, in, c, sem);
   EXPECT_EQ(got.out.steps, want.out.steps) << what;
   EXPECT_EQ(int(got.out.dir), int(want.out.dir)) << what;
   EXPECT_EQ(ax::edge_letter(got.out.edge), ax::edge_letter(want.out.edge)) << what;
@@ -254,7 +254,7 @@ RC_GTEST_PROP(smt_conformance, stop_distance_kernel_matches, ()) {
   const std::int32_t v = *edgy(0, ax::kFineSpeedMax);
   const std::int32_t s = *edgy(1000, ax::kFineSpeedMax);
   const std::int32_t a = *edgy(1, ax::kAccelMax);
-  z3::context& ctx = ap::smt::shared_context();
+  z3::context& ctx = ap::model::smt::shared_context();
   const sa::Arith ar(ctx, sa::Sem::Bv, nullptr, ctx.bool_val(true));
   const z3::expr e = sa::stop_distance_fine(ar, ctx.bv_val(static_cast<std::int64_t>(v), 64),
                                             ctx.bv_val(static_cast<std::int64_t>(s), 64),
@@ -264,7 +264,7 @@ RC_GTEST_PROP(smt_conformance, stop_distance_kernel_matches, ()) {
 
 RC_GTEST_PROP(smt_conformance, step_timer_kernel_matches, ()) {
   const auto f = static_cast<std::uint32_t>(*edgy(1, static_cast<std::int32_t>(ax::kStepFreqMax)));
-  z3::context& ctx = ap::smt::shared_context();
+  z3::context& ctx = ap::model::smt::shared_context();
   const sa::Arith ar(ctx, sa::Sem::Bv, nullptr, ctx.bool_val(true), true);
   const auto t = sa::step_timer(ar, ctx.bv_val(static_cast<std::uint64_t>(f), 64));
   const auto want = ax::step_timer(f);
@@ -275,7 +275,7 @@ RC_GTEST_PROP(smt_conformance, step_timer_kernel_matches, ()) {
 
 // The mirrored table and watchdog, exhaustively.
 TEST(smt_conformance, edge_table_and_guards_match) {
-  z3::context& ctx = ap::smt::shared_context();
+  z3::context& ctx = ap::model::smt::shared_context();
   for (int p = 0; p < 6; ++p) {
     for (int k = 0; k < 9; ++k) {
       const auto ph = static_cast<ax::Phase>(p);
@@ -291,7 +291,7 @@ TEST(smt_conformance, edge_table_and_guards_match) {
 }
 
 TEST(smt_conformance, watchdog_matches) {
-  z3::context& ctx = ap::smt::shared_context();
+  z3::context& ctx = ap::model::smt::shared_context();
   for (unsigned s : {0U, 1U, 2U, 150U, 298U, 299U, 300U, 301U, 1000U, 65535U}) {
     for (bool valid : {false, true}) {
       const auto want = ax::watchdog_tick(ax::LinkWatchdog{static_cast<std::uint16_t>(s)}, valid);

@@ -11,26 +11,26 @@ namespace {
 
 constexpr unsigned kTimeoutMs = 60000;
 
-void prove_all(void (*add)(ap::smt::ObligationList&)) {
-  ap::smt::ObligationList list;
+void prove_all(void (*add)(ap::model::smt::ObligationList&)) {
+  ap::model::smt::ObligationList list;
   add(list);
   ASSERT_FALSE(list.empty());
   const char* only = std::getenv("AP_PROVE_ONLY");  // a name prefix, for quick local runs
   for (const auto& o : list) {
     if (only != nullptr && o.name.rfind(only, 0) != 0) continue;
-    const auto r = ap::smt::run(o, kTimeoutMs);
-    EXPECT_EQ(r.verdict, ap::smt::Verdict::Proved) << o.name << ": " << r.counterexample;
-    std::printf("%-40s %-7s %.2f s\n", o.name.c_str(), ap::smt::verdict_name(r.verdict), r.seconds);
+    const auto r = ap::model::smt::run(o, kTimeoutMs);
+    EXPECT_EQ(r.verdict, ap::model::smt::Verdict::Proved) << o.name << ": " << r.counterexample;
+    std::printf("%-40s %-7s %.2f s\n", o.name.c_str(), ap::model::smt::verdict_name(r.verdict), r.seconds);
   }
 }
 
-TEST(smt_proof, axis_obligations_proved) { prove_all(&ap::smt::add_axis_obligations); }
-TEST(smt_proof, timer_obligations_proved) { prove_all(&ap::smt::add_timer_obligations); }
-TEST(smt_proof, storage_obligations_proved) { prove_all(&ap::smt::add_storage_obligations); }
+TEST(smt_proof, axis_obligations_proved) { prove_all(&ap::model::smt::add_axis_obligations); }
+TEST(smt_proof, timer_obligations_proved) { prove_all(&ap::model::smt::add_timer_obligations); }
+TEST(smt_proof, storage_obligations_proved) { prove_all(&ap::model::smt::add_storage_obligations); }
 
 TEST(smt_proof, registry_contains_the_modules) {
   std::size_t axis = 0, timer = 0, storage = 0;
-  for (const auto& o : ap::smt::all_obligations()) {
+  for (const auto& o : ap::model::smt::all_obligations()) {
     axis += o.name.rfind("axis.", 0) == 0 ? 1u : 0u;
     timer += o.name.rfind("timer.", 0) == 0 ? 1u : 0u;
     storage += o.name.rfind("storage.", 0) == 0 ? 1u : 0u;

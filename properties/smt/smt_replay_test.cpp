@@ -14,7 +14,7 @@ void replay_dir(const std::string& dir) {
   for (const auto& f : smt_replay::case_files(dir)) {
     smt_replay::Case c;
     std::string err;
-    ASSERT_TRUE(ap::smt::read_case(f, c, err)) << err;
+    ASSERT_TRUE(ap::model::smt::read_case(f, c, err)) << err;
     EXPECT_EQ(smt_replay::violations(c), "") << f << " (" << c.obligation << ")";
   }
 }

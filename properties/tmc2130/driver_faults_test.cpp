@@ -15,7 +15,7 @@
 
 namespace {
 
-namespace chip = ap::core::tmc2130;
+namespace chip = ap::tmc2130;
 using ap::model::tmc2130::Device;
 using chip::Field;
 using chip::Reg;

@@ -8,7 +8,7 @@
 
 namespace tmc_test {
 
-namespace chip = ap::core::tmc2130;
+namespace chip = ap::tmc2130;
 using ap::model::tmc2130::Device;
 
 struct Bench {

@@ -11,9 +11,9 @@
 
 namespace {
 
-namespace chip = ap::core::tmc2130;
-namespace st = ap::smt::tmc2130;
-using ap::smt::Verdict;
+namespace chip = ap::tmc2130;
+namespace st = ap::model::smt::tmc2130;
+using ap::model::smt::Verdict;
 
 constexpr unsigned kTimeoutMs = 20000;
 
@@ -22,18 +22,18 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 
 TEST(tmc2130_proof, every_field_obligation_is_proved) {
-  ap::smt::ObligationList list;
-  ap::smt::add_tmc2130_obligations(list);
+  ap::model::smt::ObligationList list;
+  ap::model::smt::add_tmc2130_obligations(list);
   ASSERT_EQ(list.size(), 3 * chip::kFieldCount);
   for (const auto& o : list) {
-    const auto r = ap::smt::run(o, kTimeoutMs);
+    const auto r = ap::model::smt::run(o, kTimeoutMs);
     EXPECT_EQ(r.verdict, Verdict::Proved) << o.name << ": " << r.counterexample;
   }
 }
 
 TEST(tmc2130_proof, registry_contains_the_module) {
   std::size_t n = 0;
-  for (const auto& o : ap::smt::all_obligations()) n += o.name.rfind("tmc2130.", 0) == 0 ? 1u : 0u;
+  for (const auto& o : ap::model::smt::all_obligations()) n += o.name.rfind("tmc2130.", 0) == 0 ? 1u : 0u;
   EXPECT_EQ(n, 3 * chip::kFieldCount);
 }
 
@@ -63,8 +63,8 @@ struct NoSignExtendKernel : st::CodeKernel {
 };
 
 template <class K>
-ap::smt::ObligationList planted() {
-  ap::smt::ObligationList list;
+ap::model::smt::ObligationList planted() {
+  ap::model::smt::ObligationList list;
   st::add_obligations_using<K>(list, "planted.");
   return list;
 }
@@ -74,12 +74,12 @@ ap::smt::ObligationList planted() {
 TEST(tmc2130_proof, field_write_bug_fails_isolation_for_every_partial_field) {
   const auto all = planted<FieldWriteKernel>();
   for (const auto& f : chip::kFields) {
-    ap::smt::ObligationList one;
+    ap::model::smt::ObligationList one;
     for (const auto& o : all) {
       if (o.name == "planted." + st::field_path(f) + ".isolation") one.push_back(o);
     }
     ASSERT_EQ(one.size(), 1u);
-    const auto r = ap::smt::run(one[0], kTimeoutMs);
+    const auto r = ap::model::smt::run(one[0], kTimeoutMs);
     if (f.mask == 0xFFFFFFFFu) {
       EXPECT_EQ(r.verdict, Verdict::Proved) << one[0].name;
     } else {
@@ -97,7 +97,7 @@ TEST(tmc2130_proof, missing_mask_fails_exactly_the_signed_fields) {
     for (const auto& f : chip::kFields) {
       if (path == st::field_path(f) + ".isolation") is_signed = f.is_signed;
     }
-    const auto r = ap::smt::run(o, kTimeoutMs);
+    const auto r = ap::model::smt::run(o, kTimeoutMs);
     EXPECT_EQ(r.verdict, is_signed ? Verdict::Failed : Verdict::Proved) << o.name << " " << r.counterexample;
   }
 }
@@ -106,7 +106,7 @@ TEST(tmc2130_proof, missing_sign_extension_fails_signed_readback) {
   unsigned failed = 0;
   for (const auto& o : planted<NoSignExtendKernel>()) {
     if (!ends_with(o.name, ".readback")) continue;
-    const auto r = ap::smt::run(o, kTimeoutMs);
+    const auto r = ap::model::smt::run(o, kTimeoutMs);
     failed += r.verdict == Verdict::Failed ? 1u : 0u;
     if (o.name.find("COOLCONF.sgt") != std::string::npos) {
       EXPECT_EQ(r.verdict, Verdict::Failed) << r.counterexample;

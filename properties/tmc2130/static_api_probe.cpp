@@ -4,7 +4,7 @@
 // fail for the reason they claim, not because the probe is broken.
 #include "core/tmc2130/driver.hpp"
 
-namespace chip = ap::core::tmc2130;
+namespace chip = ap::tmc2130;
 
 int probe(chip::Driver& d) {
 #if AP_CASE == 0

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "ap/model/waveform/svg.hpp"
-#include "ap/model/waveform/vcd.hpp"
+#include "models/waveform/svg.hpp"
+#include "models/waveform/vcd.hpp"
 
 namespace wf = ap::model::waveform;
 

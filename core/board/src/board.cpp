@@ -4,9 +4,9 @@
 #include <bit>
 #include <limits>
 
-#include "codec/commands.hpp"
-#include "codec/statuses.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/statuses.hpp"
+#include "protocol/codec/subscribers.hpp"
 #include "core/frame/echo_builder.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "core/tmc2130/fields.hpp"
@@ -15,7 +15,7 @@ namespace ap::board {
 
 namespace c = ap::codec;
 namespace st = ap::storage;
-namespace tmc = ap::core::tmc2130;
+namespace tmc = ap::tmc2130;
 using frame::HandlerStatus;
 
 namespace {

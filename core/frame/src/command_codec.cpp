@@ -1,7 +1,7 @@
 #include "core/frame/command_codec.hpp"
 
-#include "codec/commands.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/subscribers.hpp"
 #include "core/frame/fields.hpp"
 
 namespace ap::frame {

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "codec/statuses.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/statuses.hpp"
+#include "protocol/codec/subscribers.hpp"
 
 namespace ap::frame {
 

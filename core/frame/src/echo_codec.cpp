@@ -1,7 +1,7 @@
 #include "core/frame/echo_codec.hpp"
 
-#include "codec/statuses.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/statuses.hpp"
+#include "protocol/codec/subscribers.hpp"
 #include "core/frame/fields.hpp"
 
 namespace ap::frame {

@@ -1,7 +1,7 @@
 #include "core/frame/fields.hpp"
 
-#include "codec/crc16.hpp"
-#include "codec/layout.hpp"
+#include "protocol/codec/crc16.hpp"
+#include "protocol/codec/layout.hpp"
 
 namespace ap::frame::fields {
 

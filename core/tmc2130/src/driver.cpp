@@ -1,6 +1,6 @@
 #include "core/tmc2130/driver.hpp"
 
-namespace ap::core::tmc2130 {
+namespace ap::tmc2130 {
 
 Driver::Driver(SpiPort port) : port_(port) {
   for (std::size_t i = 0; i < kRegisterCount; ++i) shadow_[i] = kRegisters[i].reset;
@@ -143,4 +143,4 @@ Result<std::int64_t> Driver::get(Field field) {
   return field_get(*word, field);
 }
 
-}  // namespace ap::core::tmc2130
+}  // namespace ap::tmc2130

@@ -5,8 +5,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "codec/errors.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/errors.hpp"
+#include "protocol/codec/subscribers.hpp"
 
 namespace ap::model::echo {
 namespace {

@@ -1,5 +1,5 @@
 // Lead screw + carriage model (docs/mechanics.md).
-#include "ap/model/mechanics.hpp"
+#include "models/mechanics/mechanics.hpp"
 
 #include <Eigen/Dense>
 

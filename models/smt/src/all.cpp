@@ -1,6 +1,6 @@
 #include "models/smt/modules.hpp"
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 ObligationList all_obligations() {
   ObligationList out;
@@ -11,4 +11,4 @@ ObligationList all_obligations() {
   return out;
 }
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

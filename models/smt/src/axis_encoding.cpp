@@ -6,7 +6,7 @@
 
 #include "core/axis/watchdog.hpp"
 
-namespace ap::smt::axis {
+namespace ap::model::smt::axis {
 namespace {
 
 z3::expr zx(const z3::expr& e) { return z3::zext(e, 32); }
@@ -600,9 +600,9 @@ ax::StepResult eval_step(z3::context& ctx, const ax::State& s, const ax::Input& 
   return out;
 }
 
-}  // namespace ap::smt::axis
+}  // namespace ap::model::smt::axis
 
-namespace ap::smt::axis {
+namespace ap::model::smt::axis {
 
 z3::expr sym_watchdog_tick(z3::context& c, const z3::expr& silent, const z3::expr& valid) {
   const z3::expr lim = c.bv_val(ax::kLinkTimeoutTicks, 16);
@@ -665,4 +665,4 @@ std::int64_t ground_value(const z3::expr& e) {
   return static_cast<std::int64_t>(u);
 }
 
-}  // namespace ap::smt::axis
+}  // namespace ap::model::smt::axis

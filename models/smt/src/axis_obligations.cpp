@@ -21,7 +21,7 @@
 #include "models/smt/modules.hpp"
 #include "models/smt/obligation.hpp"
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 namespace ax = ap::axis;
 using axis::Encoder;
@@ -768,4 +768,4 @@ void add_axis_obligations(ObligationList& out) {
       });
 }
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 z3::context& shared_context() {
   static z3::context ctx;
@@ -55,4 +55,4 @@ Outcome run(const Obligation& o, unsigned timeout_ms) {
   }
 }
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

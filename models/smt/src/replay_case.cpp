@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 std::string format_case(const ReplayCase& k) {
   std::ostringstream o;
@@ -103,4 +103,4 @@ bool read_case(const std::string& path, ReplayCase& out, std::string& error) {
   return true;
 }
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

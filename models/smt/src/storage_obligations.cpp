@@ -7,7 +7,7 @@
 #include "models/smt/modules.hpp"
 #include "models/smt/obligation.hpp"
 
-namespace ap::smt {
+namespace ap::model::smt {
 namespace {
 
 z3::expr in_region(z3::context& c, const z3::expr& x, const ap::storage::Region& r) {
@@ -57,4 +57,4 @@ void add_storage_obligations(ObligationList& out) {
                  }});
 }
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

@@ -10,7 +10,7 @@
 #include "models/smt/axis_obligations.hpp"
 #include "models/smt/modules.hpp"
 
-namespace ap::smt {
+namespace ap::model::smt {
 namespace {
 
 Outcome decide_int(z3::context& c, const z3::expr& hyp, const z3::expr& goal, unsigned timeout_ms,
@@ -80,4 +80,4 @@ void add_timer_obligations(ObligationList& out) {
                  }});
 }
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

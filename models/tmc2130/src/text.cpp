@@ -8,7 +8,7 @@
 
 namespace ap::model::tmc2130 {
 
-namespace chip = ap::core::tmc2130;
+namespace chip = ap::tmc2130;
 
 namespace {
 

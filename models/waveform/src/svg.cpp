@@ -6,7 +6,7 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "ap/model/waveform/svg.hpp"
+#include "models/waveform/svg.hpp"
 
 namespace ap::model::waveform {
 namespace {

@@ -4,7 +4,7 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "ap/model/waveform/vcd.hpp"
+#include "models/waveform/vcd.hpp"
 
 namespace ap::model::waveform {
 namespace {

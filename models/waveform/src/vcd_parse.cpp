@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "ap/model/waveform/vcd.hpp"
+#include "models/waveform/vcd.hpp"
 
 namespace ap::model::waveform {
 namespace {

@@ -2,7 +2,7 @@
 // XML 1.0 parser: no DTDs, CDATA or processing instructions other than the prolog.
 #include <cctype>
 
-#include "ap/model/waveform/svg.hpp"
+#include "models/waveform/svg.hpp"
 
 namespace ap::model::waveform {
 namespace {

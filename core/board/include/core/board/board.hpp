@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <span>
 
-#include "codec/layout.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/axis/axis.hpp"
 #include "core/axis/position.hpp"
 #include "core/axis/units.hpp"
@@ -59,7 +59,7 @@ struct MotorOutput {
 // virtual interface; any pointer may be null (that output is then simply not driven).
 struct Hardware {
   void* ctx = nullptr;
-  std::array<core::tmc2130::SpiPort, kAxes> tmc{};  // one chip select per driver
+  std::array<tmc2130::SpiPort, kAxes> tmc{};  // one chip select per driver
   storage::SpiBus fram{nullptr, nullptr};
   void (*sample)(void* ctx, Inputs& in) = nullptr;
   void (*motor)(void* ctx, Axis axis, const MotorOutput& out) = nullptr;
@@ -198,7 +198,7 @@ class Board {
   frame::HandlerStatus set_parameter(Axis a, codec::CommandId id, storage::ParamId pid, std::int32_t value);
   bool apply_currents();
   bool apply_microsteps();
-  void driver_fault(std::size_t i, core::tmc2130::Error e);
+  void driver_fault(std::size_t i, tmc2130::Error e);
   frame::HandlerStatus refuse(Axis a, codec::CommandId id);
   frame::AxisEcho echo_of(std::size_t i, Block block, std::uint8_t refused) const;
   std::int32_t subscriber(frame::SubscriberSlot slot);
@@ -224,7 +224,7 @@ class Board {
 
   Hardware hw_;
   storage::ParameterStore store_;
-  std::array<core::tmc2130::Driver, kAxes> drivers_;
+  std::array<tmc2130::Driver, kAxes> drivers_;
   frame::CallbackTable table_{};
   // The link layer only (syntax, CRC): command IDs and data are checked by table_ (Klipper
   // style), so an ID outside the table reaches table_'s own bound check.

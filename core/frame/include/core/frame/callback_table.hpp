@@ -21,7 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "codec/commands.hpp"
+#include "protocol/codec/commands.hpp"
 #include "core/frame/frames.hpp"
 
 namespace ap::frame {

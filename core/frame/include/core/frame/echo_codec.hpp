@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <span>
 
-#include "codec/layout.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/frames.hpp"
 
 namespace ap::frame {

@@ -4,11 +4,11 @@
 #include <array>
 #include <cstdint>
 
-#include "codec/commands.hpp"
-#include "codec/errors.hpp"
-#include "codec/layout.hpp"
-#include "codec/statuses.hpp"
-#include "codec/subscribers.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/errors.hpp"
+#include "protocol/codec/layout.hpp"
+#include "protocol/codec/statuses.hpp"
+#include "protocol/codec/subscribers.hpp"
 
 namespace ap::frame {
 

@@ -14,7 +14,7 @@
 #include <optional>
 #include <span>
 
-#include "codec/layout.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "core/frame/frames.hpp"

@@ -5,7 +5,7 @@
 // here must only use & | ^ ~ - << >> on W and never build a W from a literal.
 #include <cstdint>
 
-namespace ap::core::tmc2130::bits {
+namespace ap::tmc2130::bits {
 
 // FIELD_SET / FIELD_UPDATE of TMC-API: keep everything outside `mask`, put `value` inside.
 // The trailing `& mask` is what stops a negative (sign-extended) value from spilling into
@@ -26,4 +26,4 @@ constexpr W sign_extend(W raw, W sign_bit) {
   return (raw ^ sign_bit) - sign_bit;
 }
 
-}  // namespace ap::core::tmc2130::bits
+}  // namespace ap::tmc2130::bits

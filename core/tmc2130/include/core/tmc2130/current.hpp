@@ -10,7 +10,7 @@
 
 #include "core/tmc2130/result.hpp"
 
-namespace ap::core::tmc2130::current {
+namespace ap::tmc2130::current {
 
 // Full-scale sense voltages (datasheet 9, CHOPCONF.vsense).
 inline constexpr std::uint32_t kVfsLowSensitivityMv = 320;   // vsense = 0
@@ -99,4 +99,4 @@ constexpr Result<std::uint8_t> cs_for_current(std::uint32_t target_ma, bool vsen
   return static_cast<std::uint8_t>(steps > 32u ? kMaxCs : steps - 1u);
 }
 
-}  // namespace ap::core::tmc2130::current
+}  // namespace ap::tmc2130::current

@@ -5,7 +5,7 @@
 #include <array>
 #include <cstdint>
 
-namespace ap::core::tmc2130 {
+namespace ap::tmc2130 {
 
 using Datagram = std::array<std::uint8_t, 5>;
 
@@ -59,4 +59,4 @@ constexpr SpiStatus decode_status(std::uint8_t b) {
 
 constexpr Reply decode_reply(const Datagram& d) { return {decode_status(d[0]), data_of(d)}; }
 
-}  // namespace ap::core::tmc2130
+}  // namespace ap::tmc2130

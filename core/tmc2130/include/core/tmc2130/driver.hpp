@@ -13,7 +13,7 @@
 #include "core/tmc2130/regmap.hpp"
 #include "core/tmc2130/result.hpp"
 
-namespace ap::core::tmc2130 {
+namespace ap::tmc2130 {
 
 // One full-duplex 40-bit transfer with chip select framed around it. Returns false when the
 // bus itself failed (then rx is not looked at).
@@ -82,4 +82,4 @@ class Driver {
   unsigned resets_recovered_ = 0;
 };
 
-}  // namespace ap::core::tmc2130
+}  // namespace ap::tmc2130

@@ -7,7 +7,7 @@
 #include "core/tmc2130/regmap.hpp"
 #include "core/tmc2130/result.hpp"
 
-namespace ap::core::tmc2130 {
+namespace ap::tmc2130 {
 
 // A field assignment for batch writes. int64 holds every field range (32-bit MSLUT words and
 // signed fields alike); the word image is the value modulo 2^32, which is injective on
@@ -64,4 +64,4 @@ constexpr Result<std::uint32_t> field_set(std::uint32_t word, std::int64_t v) {
   return field_set(word, F, v);
 }
 
-}  // namespace ap::core::tmc2130
+}  // namespace ap::tmc2130

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string_view>
 
-namespace ap::core::tmc2130 {
+namespace ap::tmc2130 {
 
 enum class Access : std::uint8_t {
   R,   // read-only status
@@ -333,4 +333,4 @@ constexpr bool table_is_consistent() {
 // unsorted addresses stop compilation. The Z3 obligations prove the arithmetic on top.
 static_assert(detail::table_is_consistent(), "TMC2130 register table is inconsistent");
 
-}  // namespace ap::core::tmc2130
+}  // namespace ap::tmc2130

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-namespace ap::core::tmc2130 {
+namespace ap::tmc2130 {
 
 enum class Error : std::uint8_t {
   UnknownRegister,    // dynamic lookup by address or name found nothing
@@ -54,4 +54,4 @@ class Result {
   bool ok_ = false;
 };
 
-}  // namespace ap::core::tmc2130
+}  // namespace ap::tmc2130

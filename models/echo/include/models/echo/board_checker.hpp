@@ -2,7 +2,7 @@
 // turns the UART bytes into frame events, the board's sampled inputs and axis motion feed the
 // model, and every echo the board sent in the tick is compared with its prediction.
 //
-// Used by the stateful property test (properties/board), the simulated board (firmware/sim)
+// Used by the stateful property test (properties/board), the simulated board (sim/)
 // and, later, the board fuzz target. Per tick:
 //   checker.rx(bytes);                     // whatever was handed to board.uart_rx()
 //   board.tick();
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "codec/layout.hpp"
+#include "protocol/codec/layout.hpp"
 #include "core/board/board.hpp"
 #include "core/frame/stream_framer.hpp"
 #include "core/storage/parameters.hpp"

@@ -28,9 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "codec/commands.hpp"
-#include "codec/layout.hpp"
-#include "codec/statuses.hpp"
+#include "protocol/codec/commands.hpp"
+#include "protocol/codec/layout.hpp"
+#include "protocol/codec/statuses.hpp"
 #include "core/frame/frames.hpp"
 #include "core/storage/parameters.hpp"
 

@@ -25,7 +25,7 @@
 #include "core/axis/axis.hpp"
 #include "models/smt/axis_kernels.hpp"
 
-namespace ap::smt::axis {
+namespace ap::model::smt::axis {
 
 namespace ax = ap::axis;
 
@@ -140,9 +140,9 @@ ax::Output eval_output(const z3::model& m, const SymOutput& o);
 ax::StepResult eval_step(z3::context& ctx, const ax::State& s, const ax::Input& in, const ax::Config& c,
                          Sem sem = Sem::Bv);
 
-}  // namespace ap::smt::axis
+}  // namespace ap::model::smt::axis
 
-namespace ap::smt::axis {
+namespace ap::model::smt::axis {
 
 // MIRRORS core/axis/include/core/axis/watchdog.hpp watchdog_tick() and link_alive() (16-bit).
 z3::expr sym_watchdog_tick(z3::context& c, const z3::expr& silent16, const z3::expr& valid_command);
@@ -155,4 +155,4 @@ z3::expr sym_edge_for(z3::context& c, const z3::expr& phase8, const z3::expr& cl
 // Evaluate a ground term to an integer (bit-vector: sign-extended from its width).
 std::int64_t ground_value(const z3::expr& e);
 
-}  // namespace ap::smt::axis
+}  // namespace ap::model::smt::axis

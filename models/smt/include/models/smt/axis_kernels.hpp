@@ -22,7 +22,7 @@
 
 #include <z3++.h>
 
-namespace ap::smt::axis {
+namespace ap::model::smt::axis {
 
 enum class Sem { Bv, Int };
 
@@ -196,4 +196,4 @@ inline TimerTerms step_timer(const Arith& ar, const z3::expr& f) {
   return {psc, arr};
 }
 
-}  // namespace ap::smt::axis
+}  // namespace ap::model::smt::axis

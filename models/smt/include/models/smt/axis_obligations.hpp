@@ -9,11 +9,11 @@
 #include "core/axis/axis.hpp"
 #include "models/smt/replay_case.hpp"
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 // One line per tick: inputs, state (phase, mode, dir, pos, target, speed, frac), outputs.
 // The states, inputs and outputs come from the solver's model of the encoding.
 std::string format_trace(const ap::axis::Config& c, const std::vector<ap::axis::State>& states,
                          const std::vector<ap::axis::Input>& inputs, const std::vector<ap::axis::Output>& outs);
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

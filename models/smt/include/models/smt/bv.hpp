@@ -6,7 +6,7 @@
 
 #include <z3++.h>
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 struct Bv {
   z3::expr e;
@@ -22,4 +22,4 @@ inline Bv operator~(const Bv& a) { return {~a.e}; }
 inline Bv operator<<(const Bv& a, unsigned s) { return {z3::shl(a.e, a.e.ctx().bv_val(s, 32))}; }
 inline Bv operator>>(const Bv& a, unsigned s) { return {z3::lshr(a.e, a.e.ctx().bv_val(s, 32))}; }
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

@@ -2,7 +2,7 @@
 // The proof-obligation registry behind `axisproof prove` and the `proof` ctest label.
 //
 // Adding obligations for a module:
-//   1. write `void add_<module>_obligations(ap::smt::ObligationList& out)` in
+//   1. write `void add_<module>_obligations(ap::model::smt::ObligationList& out)` in
 //      models/smt/src/<module>.cpp, pushing one Obligation per claim;
 //   2. declare it in include/models/smt/modules.hpp and call it from all_obligations()
 //      in src/all.cpp;
@@ -14,7 +14,7 @@
 
 #include <z3++.h>
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 enum class Verdict { Proved, Failed, Unknown };
 
@@ -50,4 +50,4 @@ Outcome check_valid(z3::context& ctx, const z3::expr& claim, unsigned timeout_ms
 // Runs an obligation, turning any escaping z3::exception into Unknown.
 Outcome run(const Obligation& o, unsigned timeout_ms);
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

@@ -14,7 +14,7 @@
 
 #include "core/axis/axis.hpp"
 
-namespace ap::smt {
+namespace ap::model::smt {
 
 struct ReplayCase {
   std::string obligation;
@@ -32,4 +32,4 @@ std::string write_case(const ReplayCase& c);
 // Reads a case file; false with `error` set on an unreadable file or a bad line.
 bool read_case(const std::string& path, ReplayCase& out, std::string& error);
 
-}  // namespace ap::smt
+}  // namespace ap::model::smt

@@ -17,9 +17,9 @@
 #include "models/smt/bv.hpp"
 #include "models/smt/obligation.hpp"
 
-namespace ap::smt::tmc2130 {
+namespace ap::model::smt::tmc2130 {
 
-namespace chip = ap::core::tmc2130;
+namespace chip = ap::tmc2130;
 
 struct CodeKernel {
   template <class W>
@@ -119,4 +119,4 @@ void add_obligations_using(ObligationList& out, const std::string& prefix) {
   }
 }
 
-}  // namespace ap::smt::tmc2130
+}  // namespace ap::model::smt::tmc2130

@@ -16,10 +16,10 @@ std::string register_map(MapFormat format);
 
 // Decodes a MOSI datagram (a request) or, with `as_reply`, a MISO datagram (status + data;
 // the data belongs to the previous access, so `reg` names it when known).
-std::string decode_datagram(const ap::core::tmc2130::Datagram& d, bool as_reply,
+std::string decode_datagram(const ap::tmc2130::Datagram& d, bool as_reply,
                             std::optional<std::uint8_t> reg = std::nullopt);
 
 // Parses "90 00 07 0C 03", "0x90,0x00,..." or "9000070C03"; nullopt unless exactly 5 bytes.
-std::optional<ap::core::tmc2130::Datagram> parse_datagram(const std::vector<std::string>& words);
+std::optional<ap::tmc2130::Datagram> parse_datagram(const std::vector<std::string>& words);
 
 }  // namespace ap::model::tmc2130

@@ -1,0 +1,201 @@
+// The simulated board (issue 9 item 2): the real board core (core/board, unchanged) over
+// virtual peripherals. A test fixture, so it may use the heap and the device models:
+//   two TMC2130 device models (SPI), the MB85RS256B FRAM model (SPI), two RLS Orbis absolute
+//   encoders (14-bit position + turn count, read by eq. 7-2 at boot), four Hall endstops
+//   driven by the carriage position (or forced), a GPIO expander that carries them, the BLE
+//   module status pins (Tab. 7-2), the power module (battery mV, charger, USB flag, charge
+//   current), the TMP117 temperature, the IMU rotation, the user button and the RGB LED
+//   (Tab. 7-4), plus a carriage per axis moved by the STEP/DIR/ENA outputs.
+//
+// Time is virtual: advance_to(t_us) runs 1 ms board ticks up to t. Everything the board sends
+// on its UART TX line is queued and handed out by take_tx(). Harness-side commands (the
+// "environment": battery, charger, pins, reboot, probes of the models) arrive as text through
+// env(); docs/sim.md lists them. Outputs (trace.csv, waveforms.vcd, plots.svg) are optional.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/axis/watchdog.hpp"
+#include "core/board/board.hpp"
+#include "models/echo/board_checker.hpp"
+#include "models/safety/board_monitor.hpp"
+#include "models/fram/mb85rs256b.hpp"
+#include "models/tmc2130/device.hpp"
+#include "models/mechanics/mechanics.hpp"
+#include "sim/trace.hpp"
+
+namespace ap::model::waveform {
+class BoardWaveforms;
+}
+
+namespace ap::sim {
+
+// Physical constants of the simulated machine (docs/sim.md). The board's parameters may say
+// otherwise (a wrong pitch stays wrong in µm, as on the real platform).
+struct Machine {
+  std::int32_t lead_um = 2000;            // screw lead per revolution (encoder: one turn)
+  std::int32_t full_steps = 200;          // Tab. 4-1: 1.8 deg
+  std::int32_t endstop_min_um = -2000;    // Hall switch positions (active at or beyond)
+  std::int32_t endstop_max_um = 202'000;
+};
+
+struct BoardOptions {
+  std::uint32_t id = 0;
+  std::uint32_t baud = 115'200;
+  std::string out_dir;         // empty: no output files
+  bool waveforms = true;       // waveforms.vcd (with out_dir)
+};
+
+// Tab. 7-2 states of the BLE module status pins (STATUS1_IND, STATUS2_IND).
+enum class Ble : std::uint8_t { Shutdown, Standby, Connected, Session };
+
+// LED colours (bits 0..2 = R, G, B) and blink (bits 4..5: 0 steady, 1 slow, 2 fast), Tab. 7-4.
+std::uint8_t led_code(const board::Board& b, Ble ble);
+std::string led_word(std::uint8_t code);   // "red_fast", "blue", ...
+
+// FNV-1a 64 (offset basis, prime): a digest of a byte stream, extended byte by byte.
+inline constexpr std::uint64_t kFnvBasis = 0xcbf29ce484222325ULL;
+constexpr std::uint64_t fnv1a(std::uint64_t h, std::span<const std::uint8_t> bytes) {
+  for (const std::uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ULL;
+  return h;
+}
+
+struct Violation {
+  std::int64_t t_us;
+  int axis;
+  std::string what;
+};
+
+class SimBoard {
+ public:
+  explicit SimBoard(BoardOptions opt);
+  ~SimBoard();
+  SimBoard(const SimBoard&) = delete;
+  SimBoard& operator=(const SimBoard&) = delete;
+
+  // Power-up. Called by the first advance_to()/rx() if not called before; setup env commands
+  // (pos, endstop position, param, fram) only act before it.
+  void boot();
+  [[nodiscard]] bool booted() const { return board_ != nullptr; }
+  // Runs board ticks until the virtual time reaches t_us (1 ms each).
+  void advance_to(std::int64_t t_us);
+  // Bytes arriving on the board's UART RX line now.
+  void rx(std::span<const std::uint8_t> bytes);
+  // Takes at most `max_bytes` of whole echo frames from the TX queue (the UART is slow: one
+  // 65-byte echo takes 5.6 ms at 115200 baud).
+  std::vector<std::uint8_t> take_tx(std::size_t max_bytes);
+  // A harness command (docs/sim.md); returns "ok[ VALUE]" or "err WHY".
+  std::string env(const std::string& line);
+  // Ends the run: orderly outputs (trace, VCD, SVG), lost-step analysis.
+  void finish();
+
+  [[nodiscard]] std::int64_t now_us() const { return now_us_; }
+  [[nodiscard]] const board::Board& core() const { return *board_; }
+  [[nodiscard]] Ble ble() const { return ble_; }
+  [[nodiscard]] std::uint8_t led() const;
+  [[nodiscard]] double carriage_um(std::size_t a) const { return carriage_um_[a]; }
+  [[nodiscard]] const std::vector<Violation>& violations() const { return violations_; }
+  // Lost-step risks per axis from the mechanics model over all STEP edges so far.
+  [[nodiscard]] std::size_t lost_step_risks(std::size_t a);
+  [[nodiscard]] std::uint64_t ticks() const { return ticks_; }
+  // The echo reference model (models/echo) run beside the board core on every tick: the
+  // disagreements found so far (at most 20 kept), how many there were and how many echoes
+  // were compared. A fresh checker with fresh boot facts follows every boot (docs/sim.md).
+  [[nodiscard]] const std::vector<std::string>& echo_disagreements() const { return echo_bad_; }
+  [[nodiscard]] std::uint64_t echo_disagreement_count() const { return echo_bad_count_; }
+  [[nodiscard]] std::uint64_t echoes_checked() const { return echoes_checked_; }
+  // Every echo the core sent on TX (all boots): count and FNV-1a 64 digest of the bytes in
+  // order, for the PC's check that the bus delivered exactly these (probe `echo_sent`).
+  [[nodiscard]] std::uint64_t echoes_sent() const { return echo_digests_.size(); }
+
+ private:
+  struct AxisRec {
+    std::vector<std::int64_t> edges_ns;   // every STEP edge
+    std::vector<std::int8_t> dirs;
+  };
+  static void sample(void* ctx, board::Inputs& in);
+  static void motor(void* ctx, board::Axis a, const board::MotorOutput& o);
+  static void uart_tx(void* ctx, std::span<const std::uint8_t> bytes);
+  static void frame_taken(void* ctx, const frame::CommandFrame& f);
+  static bool tmc_spi(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
+  static bool tmc_spi_y(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
+  static bool fram_spi(void* ctx, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept;
+  bool tmc_transfer(std::size_t a, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
+
+  void tick();
+  void fill_inputs(board::Inputs& in);
+  void check_safety();
+  void echo_disagreement(const std::string& what);
+  void trace_tick();
+  std::uint16_t expander_word() const;
+  std::string probe(const std::string& subject);
+  std::int32_t usteps_per_rev() const;
+  void seed_fram();
+  [[nodiscard]] model::mechanics::Result mechanics(std::size_t a) const;
+
+  BoardOptions opt_;
+  Machine machine_;
+  model::Mb85rs256b fram_;
+  std::array<model::tmc2130::Device, board::kAxes> tmc_{};
+  std::unique_ptr<board::Board> board_;
+  std::int64_t now_us_ = 0;
+  std::uint64_t ticks_ = 0;
+  std::uint64_t boots_ = 0;
+
+  // Environment.
+  Ble ble_ = Ble::Session;
+  bool usb_ = false;
+  bool charger_ = false;
+  std::uint16_t battery_mv_ = 4000;
+  std::int32_t temperature_mc_ = 25'000;
+  std::int32_t rotation_mdeg_ = 0;
+  bool button_ = false;
+  std::int64_t button_until_us_ = 0;
+  std::array<std::array<std::int8_t, 2>, board::kAxes> endstop_force_{};   // [axis][min,max]: -1 off, 0 auto, 1 on
+  std::array<std::int32_t, board::kAxes> endstop_min_um_{};
+  std::array<std::int32_t, board::kAxes> endstop_max_um_{};
+  std::array<double, board::kAxes> carriage_um_{};   // the physical carriage
+  std::uint16_t expander_last_ = 0xFFFF;
+
+  // Outputs and monitors.
+  std::vector<std::uint8_t> tx_;
+  std::array<AxisRec, board::kAxes> rec_{};
+  std::array<StepClock, board::kAxes> clock_{};
+  std::array<board::MotorOutput, board::kAxes> out_{};
+  model::safety::BoardMonitor monitor_;
+  std::vector<model::safety::Violation> found_;
+  std::vector<Violation> violations_;
+  std::vector<std::string> trace_rows_;
+  std::array<std::vector<double>, board::kAxes> plot_t_, plot_pos_, plot_v_;
+  std::unique_ptr<std::ofstream> vcd_file_;
+  std::unique_ptr<model::waveform::BoardWaveforms> wave_;
+  std::array<bool, board::kAxes> wave_dir_{};
+  std::array<bool, board::kAxes> wave_ena_{};
+  bool finished_ = false;
+  std::array<std::optional<std::size_t>, board::kAxes> risk_cache_{};
+  std::array<std::size_t, board::kAxes> risk_cache_edges_{};
+  std::vector<std::pair<std::string, std::int64_t>> preboot_params_;
+
+  // Echo model check.
+  std::unique_ptr<model::echo::BoardChecker> checker_;
+  std::vector<model::echo::EchoBytes> tick_echoes_;   // what the core sent on TX in this tick
+  std::vector<std::string> echo_bad_;
+  board::Inputs sampled_{};          // what the last sample() delivered
+  std::uint64_t samples_ = 0;
+  std::uint64_t echo_bad_count_ = 0;
+  std::uint64_t echoes_checked_ = 0;
+  // Every echo the core sent, over all boots: the FNV-1a digest of the whole TX stream after
+  // each of them (docs/sim.md "Echo checks").
+  std::vector<std::uint64_t> echo_digests_;
+  std::uint64_t frames_taken_ = 0;
+  std::uint64_t taken_digest_ = kFnvBasis;
+};
+
+}  // namespace ap::sim

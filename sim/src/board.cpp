@@ -1,0 +1,644 @@
+// The simulated board: the board core over virtual peripherals (docs/sim.md).
+#include "sim/board.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+#include "models/mechanics/mechanics.hpp"
+#include "models/safety/board_monitor.hpp"
+#include "models/waveform/svg.hpp"
+#include "models/waveform/vcd.hpp"
+#include "protocol/codec/layout.hpp"
+#include "core/frame/command_codec.hpp"
+#include "core/storage/parameters.hpp"
+#include "core/storage/store.hpp"
+#include "core/tmc2130/fields.hpp"
+#include "sim/params.hpp"
+
+namespace ap::sim {
+namespace {
+
+namespace tmc = ap::tmc2130;
+namespace wf = ap::model::waveform;
+namespace mech = ap::model::mechanics;
+
+constexpr std::int64_t kNsPerTick = 1'000'000;
+constexpr std::size_t kDevTmcX = 0, kDevFram = 2, kDevEncX = 3, kDevExpander = 5;
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> w;
+  std::string t;
+  while (in >> t) w.push_back(t);
+  return w;
+}
+
+std::int64_t to_int(const std::string& s) {
+  std::size_t n = 0;
+  const long long v = std::stoll(s, &n);
+  if (n != s.size()) throw std::invalid_argument("not an integer: " + s);
+  return v;
+}
+
+std::size_t axis_of(const std::string& s) {
+  if (s == "x") return 0;
+  if (s == "y") return 1;
+  throw std::invalid_argument("axis must be x or y: " + s);
+}
+
+// The STEP edges of an axis as full steps (every `per_full` microsteps of net travel): the
+// mechanics model fits the low-frequency kinematics, which a 16x thinner sequence keeps, and
+// its cost grows with the number of steps inside its fit window.
+std::vector<mech::Step> full_steps(const std::vector<std::int64_t>& edges_ns, const std::vector<std::int8_t>& dirs,
+                                   std::int32_t per_full) {
+  std::vector<mech::Step> out;
+  out.reserve(edges_ns.size() / static_cast<std::size_t>(std::max(per_full, 1)) + 1);
+  std::int64_t pos = 0;
+  for (std::size_t i = 0; i < edges_ns.size(); ++i) {
+    pos += dirs[i];
+    if (pos % per_full == 0) out.push_back({static_cast<double>(edges_ns[i]) * 1e-9, dirs[i]});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<storage::ParamId> param_by_name(std::string_view name) {
+  struct Alias {
+    std::string_view name;
+    storage::ParamId id;
+  };
+  static constexpr Alias kAliases[] = {
+      {"accel", storage::ParamId::MaxAcceleration},  {"speed_fast", storage::ParamId::FastSpeed},
+      {"speed_slow", storage::ParamId::SlowSpeed},     {"speed_start", storage::ParamId::StartSpeed},
+      {"lead", storage::ParamId::LeadPitch},           {"steps", storage::ParamId::StepsPerRev},
+      {"irun", storage::ParamId::RunCurrent},          {"ihold", storage::ParamId::HoldCurrent},
+  };
+  for (const Alias& a : kAliases) {
+    if (a.name == name) return a.id;
+  }
+  for (const storage::MapEntry& e : storage::kItemMap) {
+    if (e.name == name && e.role != storage::Role::Meta) return e.id;
+  }
+  return std::nullopt;
+}
+
+std::uint8_t led_code(const board::Board& b, Ble ble) {
+  // Tab. 7-4 priorities (docs/board.md G14): block cause red > fault > BLE blue > stand-by green.
+  constexpr std::uint8_t kR = 1, kG = 2, kB = 4, kSlow = 1 << 4, kFast = 2 << 4;
+  switch (b.block()) {
+    case board::Block::Battery: return kR | kFast;
+    case board::Block::Charger: return kR;
+    case board::Block::Usb: return kR | kSlow;
+    case board::Block::None: break;
+  }
+  if (b.fault_code() != 0) return kR | kG | kSlow;
+  switch (ble) {
+    case Ble::Session: return kB;
+    case Ble::Connected: return kB | kSlow;
+    case Ble::Standby:
+    case Ble::Shutdown: break;
+  }
+  return b.sleeping() ? static_cast<std::uint8_t>(kG | kSlow) : kG;
+}
+
+std::string led_word(std::uint8_t code) {
+  static constexpr std::string_view kColours[] = {"off", "red", "green", "yellow", "blue", "magenta", "cyan", "white"};
+  static constexpr std::string_view kBlink[] = {"", "_slow", "_fast", "_fast"};
+  std::string w(kColours[code & 7U]);
+  w.append(kBlink[(code >> 4) & 3U]);
+  return w;
+}
+
+SimBoard::SimBoard(BoardOptions opt) : opt_(std::move(opt)) {
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    endstop_min_um_[a] = machine_.endstop_min_um;
+    endstop_max_um_[a] = machine_.endstop_max_um;
+  }
+  if (!opt_.out_dir.empty() && opt_.waveforms) {
+    std::filesystem::create_directories(opt_.out_dir);
+    vcd_file_ = std::make_unique<std::ofstream>(opt_.out_dir + "/waveforms.vcd", std::ios::trunc);
+    wf::BoardWaveformConfig cfg;
+    cfg.uart_baud = opt_.baud;
+    wave_ = std::make_unique<wf::BoardWaveforms>(*vcd_file_, cfg);
+  }
+}
+
+SimBoard::~SimBoard() {
+  try {
+    finish();
+  } catch (...) {
+    // outputs are best effort in a destructor; finish() is normally called explicitly
+  }
+}
+
+std::int32_t SimBoard::usteps_per_rev() const {
+  const std::int32_t ms = board_ ? board_->mechanics().microsteps : 16;
+  return machine_.full_steps * std::max(ms, 1);
+}
+
+void SimBoard::seed_fram() {
+  if (preboot_params_.empty()) return;
+  storage::ParameterStore store(fram_.bus());
+  (void)store.boot();
+  storage::ParameterSet set = store.current();
+  for (const auto& [name, value] : preboot_params_) {
+    const auto id = param_by_name(name);
+    if (!id || !storage::set_field(set, *id, value)) throw std::invalid_argument("bad parameter " + name);
+  }
+  if (!store.save(set).ok()) throw std::runtime_error("FRAM seeding failed");
+  preboot_params_.clear();
+}
+
+void SimBoard::boot() {
+  if (!board_) seed_fram();
+  board::Hardware hw;
+  hw.ctx = this;
+  hw.tmc = {tmc::SpiPort{&SimBoard::tmc_spi, this}, tmc::SpiPort{&SimBoard::tmc_spi_y, this}};
+  hw.fram = storage::SpiBus{&SimBoard::fram_spi, this};
+  hw.sample = &SimBoard::sample;
+  hw.motor = &SimBoard::motor;
+  hw.uart_tx = &SimBoard::uart_tx;
+  hw.frame_taken = &SimBoard::frame_taken;
+  checker_.reset();   // it refers to the board it was made for
+  board_ = std::make_unique<board::Board>(hw);
+  if (wave_) {
+    // The encoders are read over SPI at power-up (eq. 7-2 seeds the step counters).
+    for (std::size_t a = 0; a < board::kAxes; ++a) {
+      board::Inputs in;
+      fill_inputs(in);
+      const auto& e = in.encoder[a];
+      const std::uint32_t word = (static_cast<std::uint32_t>(e.turns) & 0xFFFFU) << 16 | e.counts;
+      const std::array<std::uint8_t, 4> miso{static_cast<std::uint8_t>(word >> 24), static_cast<std::uint8_t>(word >> 16),
+                                             static_cast<std::uint8_t>(word >> 8), static_cast<std::uint8_t>(word)};
+      const std::array<std::uint8_t, 4> mosi{};
+      (void)wave_->spi(kDevEncX + a, static_cast<std::uint64_t>(now_us_) * 1000U, mosi, miso);
+    }
+  }
+  // What this boot will load (as `probe fram.NAME`), for the echo model's boot facts.
+  const storage::ParameterSet stored = model::echo::stored_set(fram_);
+  (void)board_->boot();
+  // A fresh echo model per power-up: boot facts from what the board sampled at boot (the
+  // encoders, set by the carriage) and the stored parameters (docs/echo-model.md). Bytes still
+  // in the old core's receive ring died with it, so the model's link twin starts empty too.
+  const model::echo::Boot facts = model::echo::boot_facts(*board_, board_->inputs(), stored);
+  checker_ = std::make_unique<model::echo::BoardChecker>(*board_, facts);
+  ++boots_;
+  monitor_ = model::safety::BoardMonitor{};
+  monitor_.booted(*board_);
+}
+
+void SimBoard::fill_inputs(board::Inputs& in) {
+  const double per_rev = static_cast<double>(usteps_per_rev());
+  (void)per_rev;
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    const double c = carriage_um_[a];
+    auto level = [](std::int8_t force, bool physical) -> std::uint8_t {
+      if (force > 0) return 1;
+      if (force < 0) return 0;
+      return physical ? 1 : 0;
+    };
+    in.endstop_min[a] = level(endstop_force_[a][0], c <= endstop_min_um_[a]);
+    in.endstop_max[a] = level(endstop_force_[a][1], c >= endstop_max_um_[a]);
+    // RLS Orbis: multi-turn count and a 14-bit angle of the screw (one turn = one lead).
+    const double revs = c / machine_.lead_um;
+    const double turns = std::floor(revs);
+    const double frac = revs - turns;
+    auto counts = static_cast<std::int64_t>(std::floor(frac * axis::kEncoderCounts + 1e-9));
+    counts = std::clamp<std::int64_t>(counts, 0, axis::kEncoderCounts - 1);
+    in.encoder[a] = axis::EncoderReading{static_cast<std::int32_t>(turns), static_cast<std::uint16_t>(counts), 1};
+  }
+  in.usb = usb_;
+  in.charger = charger_;
+  in.battery_mv = battery_mv_;
+  // Power module: charging current positive, discharge negative (more while a motor runs).
+  const bool running = out_[0].steps != 0 || out_[1].steps != 0;
+  in.charge_ma = charger_ || usb_ ? 500 : (running ? -650 : -120);
+  in.temperature_mc = temperature_mc_;
+  in.rotation_mdeg = rotation_mdeg_;
+  switch (ble_) {   // Tab. 7-2: (STATUS1_IND, STATUS2_IND)
+    case Ble::Shutdown: in.ble_status1 = false; in.ble_status2 = false; break;
+    case Ble::Standby: in.ble_status1 = true; in.ble_status2 = false; break;
+    case Ble::Connected: in.ble_status1 = true; in.ble_status2 = true; break;
+    case Ble::Session: in.ble_status1 = false; in.ble_status2 = true; break;
+  }
+}
+
+std::uint16_t SimBoard::expander_word() const {
+  // GPIO expander inputs: bits 0..3 endstops (x min, x max, y min, y max), 4 button,
+  // 5 charger detect, 6 USB flag, 7..8 BLE STATUS1/2.
+  if (!board_) return 0;
+  const board::Inputs& in = board_->inputs();
+  std::uint16_t w = 0;
+  w = static_cast<std::uint16_t>(w | (in.endstop_min[0] != 0 ? 1U : 0U) | (in.endstop_max[0] != 0 ? 2U : 0U));
+  w = static_cast<std::uint16_t>(w | (in.endstop_min[1] != 0 ? 4U : 0U) | (in.endstop_max[1] != 0 ? 8U : 0U));
+  w = static_cast<std::uint16_t>(w | (button_ ? 16U : 0U) | (in.charger ? 32U : 0U) | (in.usb ? 64U : 0U));
+  w = static_cast<std::uint16_t>(w | (in.ble_status1 ? 128U : 0U) | (in.ble_status2 ? 256U : 0U));
+  return w;
+}
+
+void SimBoard::sample(void* ctx, board::Inputs& in) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  s->fill_inputs(in);
+  s->sampled_ = in;
+  ++s->samples_;
+}
+
+namespace {
+// The inputs the echo model reads (models/echo env_of), field by field.
+bool same_env(const board::Inputs& a, const board::Inputs& b) {
+  return a.endstop_min == b.endstop_min && a.endstop_max == b.endstop_max && a.usb == b.usb && a.charger == b.charger &&
+         a.battery_mv == b.battery_mv && a.charge_ma == b.charge_ma && a.temperature_mc == b.temperature_mc &&
+         a.rotation_mdeg == b.rotation_mdeg && a.ble_status1 == b.ble_status1 && a.ble_status2 == b.ble_status2;
+}
+}  // namespace
+
+void SimBoard::motor(void* ctx, board::Axis ax, const board::MotorOutput& o) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  const auto a = static_cast<std::size_t>(ax);
+  s->out_[a] = o;
+  const std::int64_t t0 = static_cast<std::int64_t>(s->ticks_) * kNsPerTick;
+  axis::Output out;
+  out.steps = o.enable ? o.steps : 0;
+  out.dir = o.dir;
+  out.step_speed = static_cast<std::int32_t>(std::min<std::uint64_t>(std::uint64_t{o.step_hz} * axis::kSpeedScale,
+                                                                     axis::kFineSpeedMax));
+  std::vector<std::int64_t> edges;
+  s->clock_[a].tick(t0, out, edges);
+  const double step_um = static_cast<double>(s->machine_.lead_um) / s->usteps_per_rev();
+  s->carriage_um_[a] += o.dir * step_um * static_cast<double>(edges.size());
+  AxisRec& r = s->rec_[a];
+  for (const std::int64_t e : edges) {
+    r.edges_ns.push_back(e);
+    r.dirs.push_back(o.dir);
+  }
+  if (s->wave_) {
+    const bool dir = o.dir > 0;
+    if (dir != s->wave_dir_[a] || s->ticks_ == 0) s->wave_->dir(a, static_cast<std::uint64_t>(t0), dir);
+    if (o.enable != s->wave_ena_[a] || s->ticks_ == 0) s->wave_->ena(a, static_cast<std::uint64_t>(t0), o.enable);
+    s->wave_dir_[a] = dir;
+    s->wave_ena_[a] = o.enable;
+    for (const std::int64_t e : edges) s->wave_->step(a, static_cast<std::uint64_t>(e));
+  }
+}
+
+void SimBoard::frame_taken(void* ctx, const frame::CommandFrame& f) {
+  // The exactly-once check of the PC (docs/sim.md "Delivery check"): every frame the core took,
+  // across reboots, as the bytes the client formats for it.
+  auto* s = static_cast<SimBoard*>(ctx);
+  std::array<std::uint8_t, codec::kCommandLength> bytes{};
+  if (!frame::format_command(f, bytes).ok()) {
+    s->echo_disagreement("the core took a frame that does not format");
+    return;
+  }
+  ++s->frames_taken_;
+  s->taken_digest_ = fnv1a(s->taken_digest_, bytes);
+}
+
+void SimBoard::uart_tx(void* ctx, std::span<const std::uint8_t> bytes) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  s->tx_.insert(s->tx_.end(), bytes.begin(), bytes.end());
+  s->echo_digests_.push_back(fnv1a(s->echo_digests_.empty() ? kFnvBasis : s->echo_digests_.back(), bytes));
+  if (bytes.size() == codec::kEchoLength) {
+    model::echo::EchoBytes e{};
+    std::copy(bytes.begin(), bytes.end(), e.begin());
+    s->tick_echoes_.push_back(e);
+  } else {
+    s->echo_disagreement("a TX write of " + std::to_string(bytes.size()) + " bytes, not one " +
+                         std::to_string(codec::kEchoLength) + "-byte echo");
+  }
+  if (s->wave_) {
+    (void)s->wave_->uart(wf::BoardWaveforms::Uart::tx, static_cast<std::uint64_t>(s->ticks_) * kNsPerTick + 500'000U,
+                         bytes);
+  }
+}
+
+bool SimBoard::tmc_transfer(std::size_t a, const tmc::Datagram& tx, tmc::Datagram& rx) {
+  rx = tmc_[a].transfer(tx);
+  if (wave_) {
+    (void)wave_->spi(kDevTmcX + a, static_cast<std::uint64_t>(ticks_) * kNsPerTick + 100'000U, tx, rx);
+  }
+  return true;
+}
+
+bool SimBoard::tmc_spi(void* ctx, const tmc::Datagram& tx, tmc::Datagram& rx) {
+  return static_cast<SimBoard*>(ctx)->tmc_transfer(0, tx, rx);
+}
+
+bool SimBoard::tmc_spi_y(void* ctx, const tmc::Datagram& tx, tmc::Datagram& rx) {
+  return static_cast<SimBoard*>(ctx)->tmc_transfer(1, tx, rx);
+}
+
+bool SimBoard::fram_spi(void* ctx, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept {
+  auto* s = static_cast<SimBoard*>(ctx);
+  const bool ok = s->fram_.transfer(tx, rx);
+  if (s->wave_) {
+    try {
+      (void)s->wave_->spi(kDevFram, static_cast<std::uint64_t>(s->ticks_) * kNsPerTick + 200'000U, tx,
+                          std::span<const std::uint8_t>(rx.data(), rx.size()));
+    } catch (...) {
+      // a waveform failure must not change what the board sees
+    }
+  }
+  return ok;
+}
+
+void SimBoard::advance_to(std::int64_t t_us) {
+  if (!board_) boot();
+  while ((static_cast<std::int64_t>(ticks_) + 1) * axis::kTickUs <= t_us) tick();
+}
+
+void SimBoard::tick() {
+  monitor_.before_tick(*board_);
+  if (button_ && now_us_ >= button_until_us_) button_ = false;
+  tick_echoes_.clear();
+  const std::uint64_t samples = samples_;
+  board_->tick();
+  for (auto& d : tmc_) d.clear_log();
+  check_safety();
+  // The checker gives the model the inputs the core kept (board.inputs()): they must be the
+  // ones this tick's sample delivered, once per tick (docs/board.md "One cycle" step 1).
+  if (samples_ != samples + 1) echo_disagreement("the core sampled its inputs " + std::to_string(samples_ - samples) + " times in a tick");
+  if (!same_env(board_->inputs(), sampled_)) echo_disagreement("the core's inputs differ from what the hardware delivered");
+  echoes_checked_ += tick_echoes_.size();
+  for (const std::string& m : checker_->after_tick(tick_echoes_)) echo_disagreement(m);
+  trace_tick();
+  const std::uint16_t w = expander_word();
+  if (w != expander_last_ && wave_) {
+    // MCP23S17-style read of GPIOA/B after the interrupt line fired.
+    const std::array<std::uint8_t, 4> mosi{0x41, 0x12, 0, 0};
+    const std::array<std::uint8_t, 4> miso{0, 0, static_cast<std::uint8_t>(w & 0xFFU), static_cast<std::uint8_t>(w >> 8)};
+    (void)wave_->spi(kDevExpander, static_cast<std::uint64_t>(ticks_) * kNsPerTick + 300'000U, mosi, miso);
+  }
+  expander_last_ = w;
+  ++ticks_;
+  now_us_ = static_cast<std::int64_t>(ticks_) * axis::kTickUs;
+  if (wave_ && ticks_ % 100 == 0) wave_->flush(ticks_ * static_cast<std::uint64_t>(kNsPerTick));
+}
+
+void SimBoard::echo_disagreement(const std::string& what) {
+  ++echo_bad_count_;
+  if (echo_bad_.size() < 20) {
+    echo_bad_.push_back("at " + std::to_string(ticks_ + 1) + " ms (boot " + std::to_string(boots_) + "): " + what);
+  }
+}
+
+void SimBoard::check_safety() {
+  // The axis safety properties (models/safety, the same monitor as the board fuzz target's),
+  // after every tick.
+  found_.clear();
+  monitor_.after_tick(*board_, found_);
+  for (const model::safety::Violation& v : found_) {
+    if (violations_.size() < 100) violations_.push_back({static_cast<std::int64_t>(v.tick) * 1000, v.axis, v.what});
+  }
+}
+
+void SimBoard::trace_tick() {
+  const board::Board& b = *board_;
+  const std::int64_t t_us = static_cast<std::int64_t>(ticks_) * 1000;
+  const std::uint8_t led_now = led();
+  const double um_per_ustep =
+      static_cast<double>(b.mechanics().pitch_um) / (static_cast<double>(b.mechanics().steps_per_rev) * b.mechanics().microsteps);
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    const auto ax = static_cast<board::Axis>(a);
+    const axis::State& s = b.axis_state(ax);
+    const board::MotorOutput& o = b.motor_output(ax);
+    const board::Inputs& in = b.inputs();
+    if (!opt_.out_dir.empty()) {
+      char buf[512];
+      std::snprintf(buf, sizeof buf,
+                    "%lld,%c,%s,%s,%d,%d,%d,%d,%u,%u,%d,%d,-,0,%d,%d,%d,%u,%d,%d,%s,%.3f,%d,%u,%d,%d,%lld,0x%03x",
+                    static_cast<long long>(t_us), a == 0 ? 'X' : 'Y', axis::phase_name(s.phase), axis::mode_name(s.mode),
+                    s.pos, s.target, s.v / axis::kSpeedScale, o.dir, in.endstop_min[a], in.endstop_max[a],
+                    b.block() != board::Block::None ? 1 : 0, o.enable ? o.steps : 0,
+                    static_cast<int>(b.main_state()), static_cast<int>(b.block()), b.session_open() ? 1 : 0,
+                    in.battery_mv, in.charger ? 1 : 0, in.usb ? 1 : 0, led_word(led_now).c_str(), carriage_um_[a],
+                    in.encoder[a].turns, in.encoder[a].counts, o.enable ? 1 : 0, b.link_alive() ? 1 : 0,
+                    static_cast<long long>(b.counters().dispatched_frames), expander_word());
+      trace_rows_.emplace_back(buf);
+    }
+    if (!opt_.out_dir.empty() && (ticks_ % 5 == 0)) {
+      plot_t_[a].push_back(static_cast<double>(t_us) / 1e6);
+      plot_pos_[a].push_back(s.pos * um_per_ustep / 1000.0);
+      plot_v_[a].push_back(s.v / static_cast<double>(axis::kSpeedScale) * um_per_ustep / 1000.0 * s.dir);
+    }
+  }
+}
+
+void SimBoard::rx(std::span<const std::uint8_t> bytes) {
+  if (!board_) boot();
+  board_->uart_rx(bytes);
+  checker_->rx(bytes);
+  if (wave_) (void)wave_->uart(wf::BoardWaveforms::Uart::rx, static_cast<std::uint64_t>(now_us_) * 1000U, bytes);
+}
+
+std::vector<std::uint8_t> SimBoard::take_tx(std::size_t max_bytes) {
+  const std::size_t n = std::min(tx_.size(), max_bytes / codec::kEchoLength * codec::kEchoLength);
+  std::vector<std::uint8_t> out(tx_.begin(), tx_.begin() + static_cast<std::ptrdiff_t>(n));
+  tx_.erase(tx_.begin(), tx_.begin() + static_cast<std::ptrdiff_t>(n));
+  return out;
+}
+
+std::uint8_t SimBoard::led() const { return board_ ? led_code(*board_, ble_) : 0; }
+
+mech::Result SimBoard::mechanics(std::size_t a) const {
+  const AxisRec& r = rec_[a];
+  mech::Params p;
+  p.axis.lead = machine_.lead_um * 1e-6;
+  p.axis.microsteps = 1;   // full steps (full_steps() above)
+  const std::int32_t per_full = std::max(1, usteps_per_rev() / machine_.full_steps);
+  const std::vector<mech::Step> steps = full_steps(r.edges_ns, r.dirs, per_full);
+  if (steps.empty()) return {};
+  return mech::simulate(mech::Model(p), steps);
+}
+
+std::size_t SimBoard::lost_step_risks(std::size_t a) {
+  if (!risk_cache_[a] || risk_cache_edges_[a] != rec_[a].edges_ns.size()) {
+    risk_cache_[a] = mechanics(a).summary.lost_step_risks;
+    risk_cache_edges_[a] = rec_[a].edges_ns.size();
+  }
+  return *risk_cache_[a];
+}
+
+std::string SimBoard::probe(const std::string& subject) {
+  if (subject.rfind("tmc.", 0) == 0 && subject.size() > 6) {
+    const std::size_t a = axis_of(subject.substr(4, 1));
+    const std::string field = subject.substr(6);
+    for (const tmc::FieldInfo& f : tmc::kFields) {
+      if (f.name == field) return std::to_string(tmc::field_get(tmc_[a].chip_register(f.reg), f.field));
+    }
+    throw std::invalid_argument("unknown TMC2130 field " + field);
+  }
+  if (subject.rfind("fram.", 0) == 0) {
+    const auto id = param_by_name(subject.substr(5));
+    if (!id) throw std::invalid_argument("unknown parameter " + subject.substr(5));
+    // What a fresh boot would load: a copy of the chip, read by a store of its own.
+    return std::to_string(*storage::get_field(model::echo::stored_set(fram_), *id));
+  }
+  if (subject == "x.lost_steps" || subject == "y.lost_steps") return std::to_string(lost_step_risks(axis_of(subject.substr(0, 1))));
+  if (subject == "lost_steps") return std::to_string(lost_step_risks(0) + lost_step_risks(1));
+  if (subject == "watchdog_stops") return std::to_string(board_->counters().watchdog_expiries);
+  if (subject == "taken") return std::to_string(frames_taken_) + " " + std::to_string(taken_digest_);
+  if (subject == "gated") return std::to_string(board_->counters().gated_frames);
+  if (subject == "violations") {
+    std::string s = std::to_string(violations_.size());
+    if (!violations_.empty()) {
+      const Violation& v = violations_.front();
+      s += " first at " + std::to_string(v.t_us) + " us, axis " + std::to_string(v.axis) + ": " + v.what;
+    }
+    return s;
+  }
+  if (subject == "echo_model") {
+    // "CHECKED BAD": echoes compared with the model, disagreements.
+    return std::to_string(echoes_checked_) + " " + std::to_string(echo_bad_count_);
+  }
+  if (subject.rfind("echo_model.", 0) == 0) {
+    // echo_model.K.OFF: 100 characters of the K-th kept disagreement from OFF (a bus reply
+    // carries at most dds::kFrameMax bytes), empty past its end.
+    const std::string rest = subject.substr(11);
+    const std::size_t dot = rest.find('.');
+    if (dot == std::string::npos) throw std::invalid_argument("probe echo_model.K.OFF");
+    const auto k = static_cast<std::size_t>(to_int(rest.substr(0, dot)));
+    const auto off = static_cast<std::size_t>(to_int(rest.substr(dot + 1)));
+    if (k >= echo_bad_.size()) throw std::invalid_argument("no disagreement " + rest.substr(0, dot));
+    return off < echo_bad_[k].size() ? echo_bad_[k].substr(off, 100) : std::string();
+  }
+  if (subject.rfind("echo_sent.", 0) == 0) {
+    // echo_sent.N: "TOTAL DIGEST_N QUEUED": echoes the core sent, the digest of the TX stream
+    // after the first N of them, and the echoes still waiting in the TX queue.
+    const auto n = static_cast<std::size_t>(to_int(subject.substr(10)));
+    if (n > echo_digests_.size()) throw std::invalid_argument("only " + std::to_string(echo_digests_.size()) + " echoes sent");
+    return std::to_string(echo_digests_.size()) + " " + std::to_string(n == 0 ? kFnvBasis : echo_digests_[n - 1]) + " " +
+           std::to_string(tx_.size() / codec::kEchoLength);
+  }
+  if (subject == "carriage.x" || subject == "carriage.y") {
+    return std::to_string(static_cast<long long>(std::llround(carriage_um_[axis_of(subject.substr(9))])));
+  }
+  throw std::invalid_argument("unknown probe " + subject);
+}
+
+std::string SimBoard::env(const std::string& line) {
+  try {
+    const std::vector<std::string> w = words(line);
+    if (w.empty()) return "err empty";
+    const std::string& k = w[0];
+    auto need = [&](std::size_t n) {
+      if (w.size() != n) throw std::invalid_argument("'" + k + "' takes " + std::to_string(n - 1) + " arguments");
+    };
+    auto preboot = [&] {
+      if (board_) throw std::invalid_argument("'" + k + "' is a setup command (before boot)");
+    };
+    if (k == "probe") {
+      need(2);
+      if (!board_) boot();
+      return "ok " + probe(w[1]);
+    }
+    if (k == "pos") {
+      need(3);
+      preboot();
+      carriage_um_[axis_of(w[1])] = static_cast<double>(to_int(w[2]));
+    } else if (k == "endstop_at") {
+      need(4);
+      const std::size_t a = axis_of(w[1]);
+      (w[2] == "min" ? endstop_min_um_ : endstop_max_um_)[a] = static_cast<std::int32_t>(to_int(w[3]));
+    } else if (k == "param" || k == "fram") {
+      need(3);
+      preboot();
+      if (!param_by_name(w[1])) throw std::invalid_argument("unknown parameter " + w[1]);
+      preboot_params_.emplace_back(w[1], to_int(w[2]));
+    } else if (k == "boot") {
+      need(1);
+      if (!board_) boot();
+    } else if (k == "battery") {
+      need(2);
+      battery_mv_ = static_cast<std::uint16_t>(std::clamp<std::int64_t>(to_int(w[1]), 0, 65535));
+    } else if (k == "charger" || k == "usb") {
+      need(2);
+      (k == "charger" ? charger_ : usb_) = to_int(w[1]) != 0;
+    } else if (k == "temperature") {
+      need(2);
+      temperature_mc_ = static_cast<std::int32_t>(to_int(w[1]));
+    } else if (k == "rotate") {
+      need(2);
+      rotation_mdeg_ = static_cast<std::int32_t>(((to_int(w[1]) % 360'000) + 360'000) % 360'000);
+    } else if (k == "ble") {
+      need(2);
+      if (w[1] == "shutdown") ble_ = Ble::Shutdown;
+      else if (w[1] == "standby") ble_ = Ble::Standby;
+      else if (w[1] == "connected") ble_ = Ble::Connected;
+      else if (w[1] == "session") ble_ = Ble::Session;
+      else throw std::invalid_argument("BLE state " + w[1]);
+    } else if (k == "endstop") {
+      need(4);
+      const std::size_t a = axis_of(w[1]);
+      const std::size_t side = w[2] == "min" ? 0 : 1;
+      endstop_force_[a][side] = w[3] == "on" ? std::int8_t{1} : (w[3] == "off" ? std::int8_t{-1} : std::int8_t{0});
+    } else if (k == "button") {
+      need(2);
+      button_ = true;
+      button_until_us_ = now_us_ + (w[1] == "hold" ? 3'000'000 : 200'000);
+    } else if (k == "reboot") {
+      need(1);
+      // Power cycle: the drivers lose their registers, the FRAM keeps its contents.
+      for (auto& d : tmc_) d.power_cycle();
+      if (board_) boot();
+    } else {
+      return "err unknown environment command '" + k + "'";
+    }
+    return "ok";
+  } catch (const std::exception& e) {
+    return std::string("err ") + e.what();
+  }
+}
+
+void SimBoard::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (opt_.out_dir.empty()) return;
+  std::filesystem::create_directories(opt_.out_dir);
+  // Lost-step risk per tick and axis, from the mechanics model over every STEP edge.
+  std::array<std::vector<std::uint8_t>, board::kAxes> risk;
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    risk[a].assign(ticks_ + 1, 0);
+    if (rec_[a].edges_ns.empty()) continue;
+    const mech::Result res = mechanics(a);
+    for (const mech::Sample& s : res.samples) {
+      const auto k = static_cast<std::size_t>(std::max(0.0, std::floor(s.t * 1000.0)));
+      if (k < risk[a].size()) risk[a][k] = std::max(risk[a][k], static_cast<std::uint8_t>(s.risk));
+    }
+  }
+  {
+    std::ofstream t(opt_.out_dir + "/trace.csv", std::ios::trunc);
+    t << kTraceHeader
+      << ",main_state,block,session,battery_mv,charger,usb,led,carriage_um,enc_turns,enc_counts,ena,link_alive,"
+         "dispatched,gpio,lost_step_risk\n";
+    for (std::size_t i = 0; i < trace_rows_.size(); ++i) {
+      const std::size_t tick = i / board::kAxes;
+      const std::size_t a = i % board::kAxes;
+      t << trace_rows_[i] << ',' << mech::to_string(static_cast<mech::Risk>(risk[a][tick])) << '\n';
+    }
+  }
+  {
+    std::vector<wf::MotionTrace> traces;
+    for (std::size_t a = 0; a < board::kAxes; ++a) {
+      wf::MotionTrace m;
+      m.label.assign(1, a == 0 ? 'X' : 'Y');   // not operator=(const char*): gcc 12 -O3 -Wrestrict false positive
+      m.t_s = plot_t_[a];
+      m.pos_mm = plot_pos_[a];
+      m.speed_mm_s = plot_v_[a];
+      traces.push_back(std::move(m));
+    }
+    std::ofstream s(opt_.out_dir + "/plots.svg", std::ios::trunc);
+    wf::write_motion_svg(s, "Board " + std::to_string(opt_.id) + ": position and speed", traces);
+  }
+  if (wave_) {
+    wave_->finish();
+    vcd_file_->flush();
+  }
+}
+
+}  // namespace ap::sim
