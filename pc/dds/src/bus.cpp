@@ -198,12 +198,11 @@ Participant::~Participant() { dds_delete(pp_); }
 
 ParticipantPtr make_participant(std::uint32_t domain) { return std::make_shared<Participant>(domain); }
 
-// ---------------------------------------------------------------------------------------- PC
+// ------------------------------------------------------------------------------ both ends
 
-PcEndpoint::PcEndpoint(std::uint32_t domain, std::uint32_t board)
-    : PcEndpoint(make_participant(domain), board) {}
+namespace detail {
 
-PcEndpoint::PcEndpoint(ParticipantPtr participant, std::uint32_t board)
+Endpoint::Endpoint(ParticipantPtr participant, std::uint32_t board, Side side)
     : pp_(std::move(participant)), board_(board) {
   const dds_entity_t pp = pp_->handle();
   const QosPtr part = partition_qos(board);
@@ -212,15 +211,17 @@ PcEndpoint::PcEndpoint(ParticipantPtr participant, std::uint32_t board)
   try {
     const QosPtr rel = reliable_qos();
     const QosPtr be = best_effort_qos();
-    cmd_wr_ = check(dds_create_writer(pub_, topic(pp, &ap_bus_Command_desc, kCommandTopic), rel.get(), nullptr),
-                    "create_writer command");
-    echo_rd_ = check(dds_create_reader(sub_, topic(pp, &ap_bus_Echo_desc, kEchoTopic), rel.get(), nullptr),
-                     "create_reader echo");
-    tel_rd_ = check(dds_create_reader(sub_, topic(pp, &ap_bus_Telemetry_desc, kTelemetryTopic), be.get(), nullptr),
-                    "create_reader telemetry");
+    const dds_entity_t command = topic(pp, &ap_bus_Command_desc, kCommandTopic);
+    const dds_entity_t echo = topic(pp, &ap_bus_Echo_desc, kEchoTopic);
+    const dds_entity_t telemetry = topic(pp, &ap_bus_Telemetry_desc, kTelemetryTopic);
+    const bool pc = side == Side::pc;
+    wr_ = check(dds_create_writer(pub_, pc ? command : echo, rel.get(), nullptr), "create_writer");
+    rd_ = check(dds_create_reader(sub_, pc ? echo : command, rel.get(), nullptr), "create_reader");
+    tel_ = pc ? check(dds_create_reader(sub_, telemetry, be.get(), nullptr), "create_reader telemetry")
+              : check(dds_create_writer(pub_, telemetry, be.get(), nullptr), "create_writer telemetry");
     ws_ = check(dds_create_waitset(pp), "create_waitset");
-    echo_cond_ = check(dds_create_readcondition(echo_rd_, DDS_ANY_STATE), "create_readcondition");
-    check_rc(dds_waitset_attach(ws_, echo_cond_, echo_rd_), "waitset_attach");
+    cond_ = check(dds_create_readcondition(rd_, DDS_ANY_STATE), "create_readcondition");
+    check_rc(dds_waitset_attach(ws_, cond_, rd_), "waitset_attach");
   } catch (...) {
     dds_delete(pub_);
     dds_delete(sub_);
@@ -228,16 +229,24 @@ PcEndpoint::PcEndpoint(ParticipantPtr participant, std::uint32_t board)
   }
 }
 
-PcEndpoint::~PcEndpoint() {
+Endpoint::~Endpoint() {
   // Topics stay with the participant (shared by other endpoints); it deletes them last.
   dds_delete(ws_);
   dds_delete(pub_);
   dds_delete(sub_);
 }
 
-bool PcEndpoint::wait_matched(std::chrono::milliseconds timeout) {
-  return wait_until_matched(cmd_wr_, echo_rd_, timeout);
-}
+bool Endpoint::wait_matched(std::chrono::milliseconds timeout) { return wait_until_matched(wr_, rd_, timeout); }
+
+}  // namespace detail
+
+// ---------------------------------------------------------------------------------------- PC
+
+PcEndpoint::PcEndpoint(std::uint32_t domain, std::uint32_t board)
+    : PcEndpoint(make_participant(domain), board) {}
+
+PcEndpoint::PcEndpoint(ParticipantPtr participant, std::uint32_t board)
+    : Endpoint(std::move(participant), board, Side::pc) {}
 
 std::uint64_t PcEndpoint::send(std::span<const std::uint8_t> frame, std::uint64_t vtime_us, std::uint32_t flags) {
   ap_bus_Command c{};
@@ -247,12 +256,12 @@ std::uint64_t PcEndpoint::send(std::span<const std::uint8_t> frame, std::uint64_
   c.flags = flags;
   c.bytes = as_sequence(frame);
   c.wall_ns = now_ns();
-  check_rc(dds_write(cmd_wr_, &c), "write command");
+  check_rc(dds_write(wr_, &c), "write command");
   return c.seq;
 }
 
 std::optional<EchoSample> PcEndpoint::take_echo(std::chrono::milliseconds timeout) {
-  return take_one<ap_bus_Echo>(echo_rd_, ws_, timeout, [](const ap_bus_Echo& e) {
+  return take_one<ap_bus_Echo>(rd_, ws_, timeout, [](const ap_bus_Echo& e) {
     EchoSample s;
     s.board = e.board;
     s.seq = e.seq;
@@ -291,7 +300,7 @@ std::optional<Telemetry> PcEndpoint::take_telemetry() {
   for (;;) {
     void* samples[1] = {nullptr};
     dds_sample_info_t info{};
-    const dds_return_t n = dds_take(tel_rd_, samples, &info, 1, 1);
+    const dds_return_t n = dds_take(tel_, samples, &info, 1, 1);
     check_rc(n, "take telemetry");
     if (n == 0) {
       return last;
@@ -299,7 +308,7 @@ std::optional<Telemetry> PcEndpoint::take_telemetry() {
     if (info.valid_data) {
       last = from_idl(*static_cast<const ap_bus_Telemetry*>(samples[0]));
     }
-    check_rc(dds_return_loan(tel_rd_, samples, n), "return_loan");
+    check_rc(dds_return_loan(tel_, samples, n), "return_loan");
   }
 }
 
@@ -309,42 +318,10 @@ BoardEndpoint::BoardEndpoint(std::uint32_t domain, std::uint32_t board)
     : BoardEndpoint(make_participant(domain), board) {}
 
 BoardEndpoint::BoardEndpoint(ParticipantPtr participant, std::uint32_t board)
-    : pp_(std::move(participant)), board_(board) {
-  const dds_entity_t pp = pp_->handle();
-  const QosPtr part = partition_qos(board);
-  pub_ = check(dds_create_publisher(pp, part.get(), nullptr), "create_publisher");
-  sub_ = check(dds_create_subscriber(pp, part.get(), nullptr), "create_subscriber");
-  try {
-    const QosPtr rel = reliable_qos();
-    const QosPtr be = best_effort_qos();
-    echo_wr_ = check(dds_create_writer(pub_, topic(pp, &ap_bus_Echo_desc, kEchoTopic), rel.get(), nullptr),
-                     "create_writer echo");
-    tel_wr_ = check(dds_create_writer(pub_, topic(pp, &ap_bus_Telemetry_desc, kTelemetryTopic), be.get(), nullptr),
-                    "create_writer telemetry");
-    cmd_rd_ = check(dds_create_reader(sub_, topic(pp, &ap_bus_Command_desc, kCommandTopic), rel.get(), nullptr),
-                    "create_reader command");
-    ws_ = check(dds_create_waitset(pp), "create_waitset");
-    cmd_cond_ = check(dds_create_readcondition(cmd_rd_, DDS_ANY_STATE), "create_readcondition");
-    check_rc(dds_waitset_attach(ws_, cmd_cond_, cmd_rd_), "waitset_attach");
-  } catch (...) {
-    dds_delete(pub_);
-    dds_delete(sub_);
-    throw;
-  }
-}
-
-BoardEndpoint::~BoardEndpoint() {
-  dds_delete(ws_);
-  dds_delete(pub_);
-  dds_delete(sub_);
-}
-
-bool BoardEndpoint::wait_matched(std::chrono::milliseconds timeout) {
-  return wait_until_matched(echo_wr_, cmd_rd_, timeout);
-}
+    : Endpoint(std::move(participant), board, Side::board) {}
 
 std::optional<CommandSample> BoardEndpoint::take_command(std::chrono::milliseconds timeout) {
-  return take_one<ap_bus_Command>(cmd_rd_, ws_, timeout, [](const ap_bus_Command& c) {
+  return take_one<ap_bus_Command>(rd_, ws_, timeout, [](const ap_bus_Command& c) {
     CommandSample s;
     s.board = c.board;
     s.seq = c.seq;
@@ -367,13 +344,13 @@ void BoardEndpoint::echo(const CommandSample& cmd, std::span<const std::uint8_t>
   e.telemetry = to_idl(state);
   e.telemetry.board = board_;
   e.wall_ns = now_ns();
-  check_rc(dds_write(echo_wr_, &e), "write echo");
+  check_rc(dds_write(wr_, &e), "write echo");
 }
 
 void BoardEndpoint::publish_telemetry(const Telemetry& state) {
   ap_bus_Telemetry t = to_idl(state);
   t.board = board_;
-  check_rc(dds_write(tel_wr_, &t), "write telemetry");
+  check_rc(dds_write(tel_, &t), "write telemetry");
 }
 
 }  // namespace ap::dds

@@ -113,16 +113,36 @@ class Participant {
 using ParticipantPtr = std::shared_ptr<Participant>;
 ParticipantPtr make_participant(std::uint32_t domain);
 
-class PcEndpoint {
+namespace detail {
+// The setup both ends share (docs/dds.md): the board's partition, a publisher and a
+// subscriber in it, the reliable writer of what this end sends, the reliable reader of what
+// the other end sends (the waitset wakes on it), and the best-effort telemetry topic, which
+// the board writes and the PC reads. The two ends differ only in which topic is which.
+class Endpoint {
+ public:
+  Endpoint(const Endpoint&) = delete;
+  Endpoint& operator=(const Endpoint&) = delete;
+  // True once this end's writer and reader both match the other end.
+  bool wait_matched(std::chrono::milliseconds timeout);
+  [[nodiscard]] std::uint32_t board() const { return board_; }
+
+ protected:
+  enum class Side : std::uint8_t { pc, board };
+  Endpoint(ParticipantPtr participant, std::uint32_t board, Side side);
+  ~Endpoint();
+
+  ParticipantPtr pp_;
+  std::uint32_t board_;
+  std::uint64_t next_seq_ = 1;
+  std::int32_t pub_ = 0, sub_ = 0, wr_ = 0, rd_ = 0, tel_ = 0, ws_ = 0, cond_ = 0;
+};
+}  // namespace detail
+
+class PcEndpoint : public detail::Endpoint {
  public:
   PcEndpoint(ParticipantPtr participant, std::uint32_t board);
   PcEndpoint(std::uint32_t domain, std::uint32_t board);  // with a participant of its own
-  ~PcEndpoint();
-  PcEndpoint(const PcEndpoint&) = delete;
-  PcEndpoint& operator=(const PcEndpoint&) = delete;
 
-  // True once the command writer and the echo reader both match the board's endpoint.
-  bool wait_matched(std::chrono::milliseconds timeout);
   // Publishes one Command (reliable); returns its bus sequence number.
   std::uint64_t send(std::span<const std::uint8_t> frame, std::uint64_t vtime_us, std::uint32_t flags = 0);
   // Next echo in order, or nothing after timeout.
@@ -133,35 +153,17 @@ class PcEndpoint {
                   std::chrono::milliseconds timeout = std::chrono::seconds(5));
   // Latest best-effort telemetry sample, if any arrived since the last call.
   std::optional<Telemetry> take_telemetry();
-  [[nodiscard]] std::uint32_t board() const { return board_; }
-
- private:
-  ParticipantPtr pp_;
-  std::uint32_t board_;
-  std::uint64_t next_seq_ = 1;
-  std::int32_t pub_, sub_, cmd_wr_, echo_rd_, tel_rd_, ws_, echo_cond_;
 };
 
-class BoardEndpoint {
+class BoardEndpoint : public detail::Endpoint {
  public:
   BoardEndpoint(ParticipantPtr participant, std::uint32_t board);
   BoardEndpoint(std::uint32_t domain, std::uint32_t board);
-  ~BoardEndpoint();
-  BoardEndpoint(const BoardEndpoint&) = delete;
-  BoardEndpoint& operator=(const BoardEndpoint&) = delete;
 
-  bool wait_matched(std::chrono::milliseconds timeout);
   std::optional<CommandSample> take_command(std::chrono::milliseconds timeout);
   // Answers `cmd` (exactly once per command in lockstep). `frame` may be empty.
   void echo(const CommandSample& cmd, std::span<const std::uint8_t> frame, const Telemetry& state);
   void publish_telemetry(const Telemetry& state);
-  [[nodiscard]] std::uint32_t board() const { return board_; }
-
- private:
-  ParticipantPtr pp_;
-  std::uint32_t board_;
-  std::uint64_t next_seq_ = 1;
-  std::int32_t pub_, sub_, echo_wr_, tel_wr_, cmd_rd_, ws_, cmd_cond_;
 };
 
 }  // namespace ap::dds
