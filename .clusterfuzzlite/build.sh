@@ -33,7 +33,7 @@ fi
 targets=()
 for n in "${names[@]}"; do targets+=("fuzz_$n"); done
 cmake --build "$work" --parallel "${AP_JOBS:-2}" --target "${targets[@]}"
-while IFS=$'\t' read -r name group bin _replay; do
+while IFS=$'\t' read -r name group bin _replay _profile; do
   cp "$bin" "$OUT/$name"
   # libFuzzer options (OSS-Fuzz's <target>.options, [libfuzzer] key = value), e.g. max_len.
   if [[ -f $root/fuzz/$group/$name.options ]]; then cp "$root/fuzz/$group/$name.options" "$OUT/$name.options"; fi

@@ -11,6 +11,7 @@
 // Exit 1 when anything was found (or could not run), 0 otherwise; usage errors exit 2.
 #include "cli.hpp"
 #include "fuzz_run.hpp"
+#include "profile.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,6 +22,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <set>
@@ -42,8 +44,8 @@ std::vector<FuzzTarget> read_fuzz_targets(const std::string& build) {
     std::stringstream ss(line);
     std::string part;
     while (std::getline(ss, part, '\t')) f.push_back(part);
-    if (f.size() < 4) continue;
-    out.push_back({f[0], f[1], f[2], f[3]});
+    if (f.size() < 5) continue;
+    out.push_back({f[0], f[1], f[2], f[3], f[4]});
   }
   return out;
 }
@@ -375,16 +377,19 @@ std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
     }
   }
   auto all = read_fuzz_targets(build);
+  // Only the chosen profile's targets (the fifth column of fuzz_targets.txt, AP_PROFILE).
+  std::vector<FuzzTarget> mine;
+  std::copy_if(all.begin(), all.end(), std::back_inserter(mine), [&](const FuzzTarget& t) { return t.profile == o.profile; });
   std::vector<FuzzTarget> chosen;
   if (o.targets.empty()) {
-    chosen = all;
+    chosen = mine;
   } else {
     for (const auto& name : o.targets) {
-      auto it = std::find_if(all.begin(), all.end(), [&](const FuzzTarget& t) { return t.name == name; });
-      if (it == all.end()) {
-        std::fprintf(stderr, "axisproof fuzz: no fuzz target named '%s'", name.c_str());
-        for (size_t i = 0; i < all.size(); ++i) std::fprintf(stderr, "%s%s", i ? ", " : " (have: ", all[i].name.c_str());
-        std::fprintf(stderr, "%s\n", all.empty() ? "" : ")");
+      auto it = std::find_if(mine.begin(), mine.end(), [&](const FuzzTarget& t) { return t.name == name; });
+      if (it == mine.end()) {
+        std::fprintf(stderr, "axisproof fuzz: profile %s has no fuzz target named '%s'", o.profile.c_str(), name.c_str());
+        for (size_t i = 0; i < mine.size(); ++i) std::fprintf(stderr, "%s%s", i ? ", " : " (have: ", mine[i].name.c_str());
+        std::fprintf(stderr, "%s\n", mine.empty() ? "" : ")");
         *ok = false;
         return results;
       }
@@ -392,7 +397,8 @@ std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
     }
   }
   if (chosen.empty()) {
-    std::fprintf(stderr, "axisproof fuzz: no fuzz targets yet (fuzz/<group>/CMakeLists.txt with ap_add_fuzz_target)\n");
+    std::fprintf(stderr, "axisproof fuzz: profile %s has no fuzz targets (fuzz/<group>/CMakeLists.txt with ap_add_fuzz_target)\n",
+                 o.profile.c_str());
     *ok = false;
     return results;
   }
@@ -425,11 +431,12 @@ void add_fuzz(CLI::App& app) {
   static bool all = false;
   static FuzzOptions opts;
   auto* t = sub->add_option("-t,--target", targets, "Fuzz target to run (repeatable); see build/fuzz/fuzz_targets.txt");
-  sub->add_flag("-a,--all", all, "Run every fuzz target")->excludes(t);
+  sub->add_flag("-a,--all", all, "Run every fuzz target of the profile")->excludes(t);
   sub->add_option("--build-dir", g_build_dir,
                   "Fuzz-preset build tree to use (default build/fuzz, or $AP_FUZZ_BUILD_DIR); configured with --preset fuzz if new");
   sub->add_option("--time", opts.seconds, "Seconds per target (default 60)")->check(CLI::PositiveNumber);
   sub->add_option("-j,--jobs", opts.jobs, "Parallel fuzzing processes (libFuzzer -fork=N, default 2)")->check(CLI::Range(1, 64));
+  add_profile_option(sub, opts.profile);
   sub->add_flag("--no-save", opts.no_save,
                 "Leave fuzz/corpus and fuzz/regressions untouched: merged corpus and reproducers stay under out/fuzz/<target>/");
   sub->final_callback([] {

@@ -13,6 +13,9 @@
 //   build-dev    dev preset (gcc-12, -Werror): everything, incrementally
 //   build-asan   asan preset (clang, ASan + UBSan, coverage, fuzz binaries); re-configured
 //                from the preset when an older build/asan lacks coverage or fuzz binaries
+// Every stage judges one firmware profile (--profile, default xy; docs/profiles.md): its tests
+// and the harness's own (ctest -L '^(xy|harness)$'), its fuzz targets, obligations, mutants,
+// coverage folders and size check.
 //   tests        ctest -L 'unit|property|proof' on the asan build (profiles to build/asan/profiles)
 //   proofs       `axisproof prove` (NOT RUN while it is the placeholder)
 //   fuzz         ctest -L fuzz on the asan build (replays corpora and regressions; not the
@@ -21,9 +24,9 @@
 //                seconds over a copy of its corpus (the tree is left untouched, new inputs and
 //                findings go to out/gate/fuzz/<t>/)
 //   e2e          ctest -L e2e on the asan build (NOT RUN when there are no e2e tests)
-//   mutation     ci/mutate: every ci/mutants/*.patch must be killed
+//   mutation     ci/mutate --profile P: every mutant of the profile must be killed
 //   coverage     ci/coverage tests over the profiles the test stages wrote (the asan build);
-//                llvm-cov line + branch of core/ and protocol/, FAIL below 90 % branch. Falls
+//                llvm-cov line + branch of the profile's coverage paths, FAIL below 90 % branch. Falls
 //                back to the cov preset (a build of its own) when build/asan has no coverage.
 //   m4           ci/m4-build: Cortex-M4 static libraries, size table, symbol check
 //   bench        `axisproof bench --filter` one benchmark: the README's bench command needs the
@@ -33,6 +36,7 @@
 #include "cli.hpp"
 #include "fuzz_run.hpp"
 #include "gate.hpp"
+#include "profile.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -140,6 +144,11 @@ std::string self_exe() {
 
 // ---- stages --------------------------------------------------------------------------
 
+// The profile the gate judges (--profile, docs/profiles.md): its tests and fuzz targets carry
+// its name as a ctest label, the harness's own checks the label harness; both run.
+const Profile* g_profile = nullptr;
+std::string profile_labels() { return "^(" + std::string(g_profile->name) + "|harness)$"; }
+
 std::map<std::string, bool> built_ok;
 
 bool cache_has(const std::string& preset, const std::string& entry) {
@@ -178,7 +187,8 @@ Outcome build_stage(const std::string& preset, const std::string& log) {
 
 int count_tests(const std::string& preset, const std::string& labels) {
   int st = 0;
-  const std::string out = run_capture("cd " + quote(source_dir()) + " && ctest --preset " + preset + " -N -L " + quote(labels) + " 2>/dev/null", &st);
+  const std::string out = run_capture("cd " + quote(source_dir()) + " && ctest --preset " + preset + " -N -L " + quote(labels) +
+                                          " -L " + quote(profile_labels()) + " 2>/dev/null", &st);
   std::smatch m;
   if (std::regex_search(out, m, std::regex(R"(Total Tests: (\d+))"))) return std::stoi(m[1].str());
   return 0;
@@ -190,7 +200,8 @@ Outcome ctest_stage(const std::string& labels, const std::string& junit, const s
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
   const int n = count_tests("asan", labels);
   if (n == 0) return {Result::NotRun, "no tests labelled " + labels};
-  const int st = run_logged("ctest --preset asan -L " + quote(labels) + " --no-tests=error --output-junit " + quote(junit),
+  const int st = run_logged("ctest --preset asan -L " + quote(labels) + " -L " + quote(profile_labels()) +
+                                " --no-tests=error --output-junit " + quote(junit),
                             log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
   const std::string text = slurp(log);
   std::smatch m;
@@ -205,7 +216,7 @@ Outcome proofs_stage(gate::Run& run, const std::string& log) {
   if (slurp(source_dir() + "/cli/cmd_prove.cpp").find("not available yet") != std::string::npos) {
     return {Result::NotRun, "axisproof prove is still the placeholder (issue 7)"};
   }
-  const int st = run_logged(quote(self_exe()) + " prove", log, R"(^\[\d+/\d+\])");
+  const int st = run_logged(quote(self_exe()) + " prove --profile " + std::string(g_profile->name), log, R"(^\[\d+/\d+\])");
   const std::string text = slurp(log);
   if (text.find("not available yet") != std::string::npos) return {Result::NotRun, "axisproof prove not available yet"};
   // The final table: a header line starting with "obligation", rows until a blank line.
@@ -296,9 +307,12 @@ void fuzz_short_run(const FuzzTarget& t, gate::Run& run, const std::string& log,
 
 Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
-  const auto listed = read_fuzz_targets(build_dir("asan"));
-  if (listed.empty()) return {Result::NotRun, "no fuzz targets (fuzz/<group>/ with ap_add_fuzz_target)"};
-  const std::string not_cfl = " -E '^fuzz\\.clusterfuzzlite_build_sh$'";
+  std::vector<FuzzTarget> listed;
+  for (const auto& t : read_fuzz_targets(build_dir("asan"))) {
+    if (t.profile == g_profile->name) listed.push_back(t);
+  }
+  if (listed.empty()) return {Result::NotRun, "no fuzz targets of this profile (fuzz/<group>/ with ap_add_fuzz_target)"};
+  const std::string not_cfl = " -L " + quote(profile_labels()) + " -E '^fuzz\\.clusterfuzzlite_build_sh$'";
   int st = 0;
   const std::string n_out = run_capture("cd " + quote(source_dir()) + " && ctest --preset asan -N -L fuzz" + not_cfl + " 2>/dev/null", &st);
   std::smatch nm;
@@ -336,8 +350,12 @@ Outcome e2e_stage(const std::string& log) {
 Outcome mutation_stage(gate::Run& run, const std::string& log) {
   bool any = false;
   std::error_code ec;
-  for (const auto& e : fs::directory_iterator(source_dir() + "/ci/mutants", ec)) any = any || e.path().extension() == ".patch";
-  if (!any) return {Result::NotRun, "no mutants in ci/mutants/"};
+  // The profile's mutants and the harness's own (README, bootstrap, CLI), like the tests.
+  const std::string mine = "Profile: " + std::string(g_profile->name) + "\n";
+  for (const auto& e : fs::directory_iterator(source_dir() + "/ci/mutants", ec)) {
+    any = any || (e.path().extension() == ".patch" && slurp(e.path().string()).find(mine) != std::string::npos);
+  }
+  if (!any) return {Result::NotRun, "no mutants of this profile in ci/mutants/"};
   fs::remove(source_dir() + "/out/mutate/report.tsv", ec);
   // The runner judges each mutant in build/dev and build/asan (overlay mode, ci/mutate), so
   // both must have built. Its baseline of the Killed-by checks always runs (the earlier stages
@@ -354,7 +372,9 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
       earlier_pass = false;
     }
   }
-  const int st = run_logged(std::string("ci/mutate --jobs ") + std::to_string(build_jobs()) + (earlier_pass ? " --no-wide-baseline" : ""), log,
+  const int st = run_logged("ci/mutate --profile " + std::string(g_profile->name) + ",harness --jobs " + std::to_string(build_jobs()) +
+                                (earlier_pass ? " --no-wide-baseline" : ""),
+                            log,
                             R"(^\[\d+/\d+\]|^mutate: )");
   std::ifstream tsv(source_dir() + "/out/mutate/report.tsv");
   std::string line;
@@ -389,12 +409,18 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
   // coverage), ci/coverage builds the cov preset and runs the suite again.
   const bool shared = asan_shared() && fs::is_directory(profile_dir()) && !fs::is_empty(profile_dir());
   const std::string from = shared ? " --build-dir " + quote(build_dir("asan")) + " --profiles " + quote(profile_dir()) : "";
-  const int st = run_logged("ci/coverage tests" + from + " --min-branch " + std::string(thr), log, R"(^coverage)");
+  std::string sources;
+  std::string measured;
+  for (const auto& p : g_profile->coverage_paths) {
+    sources += " --source " + quote(std::string(p));
+    measured += (measured.empty() ? "" : ", ") + std::string(p);
+  }
+  const int st = run_logged("ci/coverage tests" + from + sources + " --min-branch " + std::string(thr), log, R"(^coverage)");
   const auto kv = read_kv(source_dir() + "/out/coverage/tests/summary.txt");
   if (kv.count("branch_percent") == 0) return {Result::Fail, "no coverage figures (see log)"};
   const std::string key = "branch " + kv.at("branch_percent") + " % (min " + thr + " %), line " + kv.at("line_percent") +
                           " %, " + kv.at("files") + " files";
-  run.details.coverage_summary = "core/ + protocol/ from the whole test suite (" + std::string(shared ? "asan build, the gate's test stages" : "cov preset") + "): lines " + kv.at("line_percent") +
+  run.details.coverage_summary = measured + " from the whole test suite (" + std::string(shared ? "asan build, the gate's test stages" : "cov preset") + "): lines " + kv.at("line_percent") +
                                  " % of " + kv.at("lines") + ", branches " + kv.at("branch_percent") + " % of " +
                                  kv.at("branches") + "; the gate requires at least " + thr + " % branch coverage.";
   std::ifstream rep(source_dir() + "/out/coverage/tests/report.txt");
@@ -414,7 +440,7 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
 }
 
 Outcome m4_stage(gate::Run& run, const std::string& log) {
-  const int st = run_logged("ci/m4-build --out " + quote(release_dir()), log, R"(^total|^flash|m4-build:)");
+  const int st = run_logged(std::string(g_profile->size_check) + " --out " + quote(release_dir()), log, R"(^total|^flash|m4-build:)");
   run.details.m4_size_md = slurp(release_dir() + "/m4-size.md");
   const std::string txt = slurp(release_dir() + "/m4-size.txt");
   std::smatch m;
@@ -451,7 +477,9 @@ std::string now_utc() {
 }  // namespace
 
 void add_gate(CLI::App& app) {
-  auto* sub = app.add_subcommand("gate", "Release gate on the bundled firmware core: every stage, a verdict table, exit 0 only on PASS");
+  auto* sub = app.add_subcommand("gate", "Release gate on a profile's firmware core: every stage, a verdict table, exit 0 only on PASS");
+  static std::string profile;
+  add_profile_option(sub, profile);
   static std::string junit;
   static std::vector<std::string> skip;
   static std::string out_root;
@@ -468,7 +496,9 @@ void add_gate(CLI::App& app) {
     fs::remove_all(gate_dir(), ec);
     fs::remove_all(release_dir(), ec);
     fs::create_directories(gate_dir() + "/logs");
+    g_profile = chosen_profile(profile);
     gate::Run run;
+    run.profile = std::string(g_profile->name) + " (" + std::string(g_profile->title) + ")";
     run.version = AP_VERSION;
     run.date = now_utc();
     int st = 0;

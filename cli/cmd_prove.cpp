@@ -1,4 +1,4 @@
-// axisproof prove: discharges the registered proof obligations (models/smt) with Z3.
+// axisproof prove: discharges a profile's proof obligations (the XY profile's: models/smt) with Z3.
 // Exit 0 only when every selected obligation is PROVED; UNKNOWN (e.g. a timeout) fails too,
 // because an obligation that was not proved is not a proof.
 #include "cli.hpp"
@@ -11,12 +11,14 @@
 #include <vector>
 
 #include "models/smt/obligation.hpp"
+#include "profile.hpp"
 
 namespace ap::cli {
 
 namespace {
 
 struct ProveOptions {
+  std::string profile;
   std::vector<std::string> only;
   // Generous: the slowest obligation takes ~8 s on a loaded 2-core machine, and a timeout is
   // UNKNOWN, which fails the gate (the suite as a whole takes 20-40 s).
@@ -35,7 +37,7 @@ bool selected(const std::string& name, const std::vector<std::string>& only) {
 int prove(const ProveOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<model::smt::Obligation> chosen;
-  for (auto& o : model::smt::all_obligations()) {
+  for (auto& o : chosen_profile(opt.profile)->obligations()) {
     if (selected(o.name, opt.only)) chosen.push_back(std::move(o));
   }
   if (chosen.empty()) {
@@ -84,7 +86,8 @@ int prove(const ProveOptions& opt) {
 
 void add_prove(CLI::App& app) {
   auto opt = std::make_shared<ProveOptions>();
-  auto* sub = app.add_subcommand("prove", "Prove the registered obligations with Z3");
+  auto* sub = app.add_subcommand("prove", "Prove a profile's obligations with Z3");
+  add_profile_option(sub, opt->profile);
   sub->add_option("--only", opt->only, "Only obligations with this name or name prefix (repeatable)");
   sub->add_option("--timeout", opt->timeout_s, "Z3 time limit per obligation, seconds (default 60)")
       ->check(CLI::PositiveNumber);

@@ -12,13 +12,15 @@ struct FuzzTarget {
   std::string group;   // folder under fuzz/: the dictionary is fuzz/dict/<name or group>.dict
   std::string binary;  // libFuzzer binary, "-" outside the fuzz preset
   std::string replay;  // plain replay driver
+  std::string profile; // the firmware profile it belongs to (docs/profiles.md)
 };
 
 // Reads <build_dir>/fuzz_targets.txt; empty when the file is missing or lists nothing.
 std::vector<FuzzTarget> read_fuzz_targets(const std::string& build_dir);
 
 struct FuzzOptions {
-  std::vector<std::string> targets;  // empty: every target
+  std::string profile = "xy";        // only this profile's targets
+  std::vector<std::string> targets;  // empty: every target of the profile
   int seconds = 60;                  // per target
   int jobs = 2;                      // libFuzzer -fork=N
   // false: new inputs are merged into fuzz/corpus/<t> and reproducers go to

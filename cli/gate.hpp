@@ -40,6 +40,7 @@ struct Run {
   bool pass = false;
   double seconds = 0;
   std::string version, git_hash, date;
+  std::string profile;  // the firmware profile judged (docs/profiles.md)
 };
 
 void print_table(const Run& run);

@@ -127,7 +127,7 @@ void print_table(const Run& run) {
                 r.outcome.key.c_str());
   }
   std::printf("%-24s %-8s %8.1fs\n", "total", "", run.seconds);
-  std::printf("\nverdict: %s\n", run.pass ? "PASS" : "FAIL");
+  std::printf("\nverdict (profile %s): %s\n", run.profile.c_str(), run.pass ? "PASS" : "FAIL");
 }
 
 bool write_junit(const Run& run, const std::string& file) {
@@ -169,7 +169,7 @@ void write_reports(const Run& run, const std::string& dir) {
 
   std::ofstream md(dir + "/report.md");
   md << "# axisproof release gate: " << (run.pass ? "PASS" : "FAIL") << "\n\n";
-  md << "axisproof " << run.version << ", commit " << run.git_hash << ", " << run.date << ", total "
+  md << "Profile " << run.profile << ". axisproof " << run.version << ", commit " << run.git_hash << ", " << run.date << ", total "
      << fmt_seconds(run.seconds) << ". A stage that could not run is NOT RUN and fails the gate.\n\n";
   md << "## Stages\n\n";
   md_table(md, stage_head, stage_rows(run));
@@ -179,7 +179,7 @@ void write_reports(const Run& run, const std::string& dir) {
   md << "\n## Fuzz smoke\n\n";
   if (d.fuzz.empty()) md << "No fuzz run.\n";
   else md_table(md, fuzz_head, d.fuzz);
-  md << "\n## Coverage of core/ and protocol/ (test suite, llvm-cov)\n\n";
+  md << "\n## Coverage (test suite, llvm-cov)\n\n";
   md << (d.coverage_summary.empty() ? "No coverage figures (the coverage stage did not run)." : d.coverage_summary) << "\n\n";
   if (!d.coverage.empty()) md_table(md, cov_head, d.coverage);
   md << "\n## Mutation suite\n\n";
@@ -206,7 +206,7 @@ void write_reports(const Run& run, const std::string& dir) {
           ".pass{background:#dfd}.fail{background:#fdd}.notrun{background:#fed}pre{background:#f6f6f6;padding:1em}"
           "h1 span.pass,h1 span.fail{padding:0 .3em}</style></head><body>\n";
   html << "<h1>axisproof release gate: <span class=\"" << (run.pass ? "pass" : "fail") << "\">" << (run.pass ? "PASS" : "FAIL")
-       << "</span></h1>\n<p>axisproof " << xml_escape(run.version) << ", commit " << xml_escape(run.git_hash) << ", "
+       << "</span></h1>\n<p>Profile " << xml_escape(run.profile) << ". axisproof " << xml_escape(run.version) << ", commit " << xml_escape(run.git_hash) << ", "
        << xml_escape(run.date) << ", total " << fmt_seconds(run.seconds)
        << ". A stage that could not run is NOT RUN and fails the gate.</p>\n";
   html << "<h2>Stages</h2>\n";
@@ -220,7 +220,7 @@ void write_reports(const Run& run, const std::string& dir) {
   html << "<h2>Fuzz smoke</h2>\n";
   if (d.fuzz.empty()) html << "<p>No fuzz run.</p>\n";
   else html_table(html, fuzz_head, d.fuzz);
-  html << "<h2>Coverage of core/ and protocol/</h2>\n<p>"
+  html << "<h2>Coverage (test suite, llvm-cov)</h2>\n<p>"
        << xml_escape(d.coverage_summary.empty() ? "No coverage figures (the coverage stage did not run)." : d.coverage_summary)
        << (d.coverage_summary.empty() ? "" : " <a href=\"../coverage/tests/html/index.html\">line-by-line report</a>") << "</p>\n";
   if (!d.coverage.empty()) html_table(html, cov_head, d.coverage);
@@ -259,7 +259,7 @@ void write_manifest(const Run& run, const std::string& release) {
   }
   std::ofstream j(release + "/manifest.json");
   j << "{\n  \"name\": \"axisproof\",\n  \"version\": \"" << json_escape(run.version) << "\",\n  \"git\": \""
-    << json_escape(run.git_hash) << "\",\n  \"date\": \"" << json_escape(run.date) << "\",\n  \"verdict\": \""
+    << json_escape(run.git_hash) << "\",\n  \"profile\": \"" << json_escape(run.profile) << "\",\n  \"date\": \"" << json_escape(run.date) << "\",\n  \"verdict\": \""
     << (run.pass ? "PASS" : "FAIL") << "\",\n  \"compilers\": {\n    \"host-gcc\": \"" << json_escape(gcc)
     << "\",\n    \"host-clang\": \"" << json_escape(clang) << "\",\n    \"arm-none-eabi\": \"" << json_escape(arm)
     << "\"\n  },\n  \"m4_flags\": \"-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -Os -Werror -fno-exceptions -fno-rtti\",\n"
@@ -277,7 +277,7 @@ void write_manifest(const Run& run, const std::string& release) {
 
   std::ofstream m(release + "/MANIFEST.md");
   m << "# axisproof release artifact\n\n";
-  m << "- version: " << run.version << "\n- git: " << run.git_hash << "\n- date: " << run.date
+  m << "- profile: " << run.profile << "\n- version: " << run.version << "\n- git: " << run.git_hash << "\n- date: " << run.date
     << "\n- gate verdict: " << (run.pass ? "PASS" : "FAIL") << "\n- host gcc: " << gcc << "\n- host clang: " << clang
     << "\n- arm-none-eabi: " << arm << "\n- Cortex-M4 libraries (m4/): ";
   for (size_t i = 0; i < libs.size(); ++i) m << (i ? ", " : "") << libs[i];

@@ -40,6 +40,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion&) {
     std::printf("axisproof %s\n", AP_VERSION);
     return 0;
+  } catch (const CLI::Success&) {
+    return 0;  // an option that answered by itself (--profile list)
   } catch (const CLI::ParseError& e) {
     std::string what = e.what();
     for (char& c : what) {

@@ -5,16 +5,24 @@
 #       check that no object references the heap (operator new/delete, malloc, free, ...).
 #       DEPS may only name other core libraries or ap_codec (the layer rule).
 #   ap_add_test(<name> LABEL <unit|property|proof|fuzz|e2e> SOURCES ... [LIBS ...])
-#       A GoogleTest + RapidCheck executable whose tests ctest discovers with that label.
+#       A GoogleTest + RapidCheck executable whose tests ctest discovers with that label and
+#       the label of the profile they belong to (AP_PROFILE, below).
+#   ap_test_labels(<test>... LABEL <kind>)
+#       The same two labels for tests made with add_test().
 #   ap_add_fuzz_target(<name> SOURCES ... [LIBS ...])
 #       In the fuzz preset: a libFuzzer binary fuzz_<name>. In every preset: a plain
 #       replay driver replay_<name> and a ctest (label fuzz) that replays
 #       fuzz/corpus/<name> and fuzz/regressions/<name>. Every target is listed in
-#       <build>/fuzz_targets.txt (name, group, fuzz binary or "-", replay binary; tab-separated),
+#       <build>/fuzz_targets.txt (name, group, fuzz binary or "-", replay binary, profile;
+#       tab-separated),
 #       which `axisproof fuzz`, ci/nightly-fuzz and .clusterfuzzlite/build.sh read.
 #   <build>/core_libs.txt lists each core library and its archive (the Cortex-M4 size table
 #   and symbol check read it).
 #
+# AP_PROFILE: the firmware profile (docs/profiles.md) the tests and fuzz targets of a folder
+# belong to, set by the folder (or inherited from its parent): `xy`, or `harness` for the
+# harness's own checks. The gate selects a profile's tests by this label (ctest -L '^xy$').
+# A test or fuzz target defined where it is unset is a configure error.
 # AP_MCU_ONLY (the m4 preset): only protocol/codec, core and firmware/m4 are configured;
 # ap_add_test, ap_add_fuzz_target and ap_add_bench do nothing.
 # AP_FUZZ_ENGINE (set by .clusterfuzzlite/build.sh from $LIB_FUZZING_ENGINE): link flags of an
@@ -53,6 +61,21 @@ function(ap_core_library name)
   set(AP_CORE_LIBS ${AP_CORE_LIBS} ${name} CACHE INTERNAL "core libraries")
 endfunction()
 
+function(_ap_require_profile what)
+  if(NOT AP_PROFILE)
+    message(FATAL_ERROR "${what}: AP_PROFILE is not set in ${CMAKE_CURRENT_SOURCE_DIR} (docs/profiles.md)")
+  endif()
+endfunction()
+
+function(ap_test_labels)
+  cmake_parse_arguments(A "" "LABEL" "" ${ARGN})
+  if(NOT A_LABEL MATCHES "^(unit|property|proof|fuzz|e2e)$")
+    message(FATAL_ERROR "ap_test_labels: LABEL must be unit, property, proof, fuzz or e2e")
+  endif()
+  _ap_require_profile("${A_UNPARSED_ARGUMENTS}")
+  set_tests_properties(${A_UNPARSED_ARGUMENTS} PROPERTIES LABELS "${A_LABEL};${AP_PROFILE}")
+endfunction()
+
 function(ap_add_test name)
   if(AP_MCU_ONLY)
     return()
@@ -61,11 +84,19 @@ function(ap_add_test name)
   if(NOT A_LABEL MATCHES "^(unit|property|proof|fuzz|e2e)$")
     message(FATAL_ERROR "ap_add_test(${name}): LABEL must be unit, property, proof, fuzz or e2e")
   endif()
+  _ap_require_profile(${name})
   add_executable(${name} ${A_SOURCES})
   target_link_libraries(${name} PRIVATE ${A_LIBS} rapidcheck_gtest rapidcheck GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE AP_SOURCE_DIR="${CMAKE_SOURCE_DIR}" AP_BINARY_DIR="${CMAKE_BINARY_DIR}")
-  gtest_discover_tests(${name} PROPERTIES LABELS ${A_LABEL}
-                       WORKING_DIRECTORY ${CMAKE_SOURCE_DIR} DISCOVERY_TIMEOUT 60)
+  gtest_discover_tests(${name} WORKING_DIRECTORY ${CMAKE_SOURCE_DIR} DISCOVERY_TIMEOUT 60)
+  # gtest_discover_tests flattens a list of labels into separate arguments, so the two labels
+  # are set by a script ctest includes after the discovered tests (it lists them in
+  # <name>_TESTS).
+  set(_labels ${CMAKE_CURRENT_BINARY_DIR}/${name}_labels.cmake)
+  file(WRITE ${_labels} "foreach(_t IN LISTS ${name}_TESTS)\n"
+                        "  set_tests_properties(\"\${_t}\" PROPERTIES LABELS \"${A_LABEL};${AP_PROFILE}\")\n"
+                        "endforeach()\n")
+  set_property(DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES ${_labels})
 endfunction()
 
 function(ap_add_fuzz_target name)
@@ -73,12 +104,13 @@ function(ap_add_fuzz_target name)
     return()
   endif()
   cmake_parse_arguments(A "" "" "SOURCES;LIBS" ${ARGN})
+  _ap_require_profile(${name})
   get_filename_component(_group ${CMAKE_CURRENT_SOURCE_DIR} NAME)
   add_executable(replay_${name} ${A_SOURCES} ${CMAKE_SOURCE_DIR}/fuzz/replay_main.cpp)
   target_link_libraries(replay_${name} PRIVATE ${A_LIBS})
   add_test(NAME fuzz.${name}.replay
            COMMAND replay_${name} ${CMAKE_SOURCE_DIR}/fuzz/corpus/${name} ${CMAKE_SOURCE_DIR}/fuzz/regressions/${name})
-  set_tests_properties(fuzz.${name}.replay PROPERTIES LABELS fuzz)
+  set_tests_properties(fuzz.${name}.replay PROPERTIES LABELS "fuzz;${AP_PROFILE}")
   if(AP_FUZZ OR AP_FUZZ_BINARIES)
     add_executable(fuzz_${name} ${A_SOURCES})
     target_link_libraries(fuzz_${name} PRIVATE ${A_LIBS})
@@ -93,7 +125,7 @@ function(ap_add_fuzz_target name)
   else()
     set(_fuzz_bin -)
   endif()
-  set_property(GLOBAL APPEND PROPERTY AP_FUZZ_LIST_LINES "${name}\t${_group}\t${_fuzz_bin}\t$<TARGET_FILE:replay_${name}>")
+  set_property(GLOBAL APPEND PROPERTY AP_FUZZ_LIST_LINES "${name}\t${_group}\t${_fuzz_bin}\t$<TARGET_FILE:replay_${name}>\t${AP_PROFILE}")
 endfunction()
 
 include(GoogleTest)

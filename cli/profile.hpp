@@ -1,0 +1,75 @@
+#pragma once
+// A firmware profile: what one controller gives the harness and how the harness's commands
+// reach it (docs/profiles.md). `axisproof sim`, `gate`, `fuzz`, `prove` and `frame` take
+// `--profile NAME` (default xy; `--profile list` prints the table) and touch the controller
+// only through its entry here. What the harness keeps generic needs no entry: a profile's
+// tests and fuzz targets carry its name as a ctest label and in fuzz_targets.txt (AP_PROFILE),
+// its mutants name it in their `Profile:` header.
+#include <CLI/CLI.hpp>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "models/smt/obligation.hpp"
+
+namespace ap::cli {
+
+struct SimRunArgs {
+  std::string scenario;  // resolved path
+  bool realtime = false;
+  bool join = false;
+  long long domain = -1;  // -1: claim a free one
+  std::string out_root;
+  int step_ms = 10;
+};
+
+struct SimBoardArgs {
+  unsigned domain = 0;
+  unsigned boards = 1;
+  std::string out;
+  int idle_s = 600;
+};
+
+struct Profile {
+  std::string_view name;   // the --profile value, the ctest label, the mutants' Profile:
+  std::string_view title;
+  std::string_view seed;   // where its requirements come from
+  std::string_view mcu;    // the target of its size check
+
+  // Its wire codec (frame decode/encode/doc). decode_* print one line per frame or problem
+  // and return true when everything decoded.
+  bool (*decode_frames)(const std::vector<std::string>& frames);
+  bool (*decode_stream)(const std::string& capture);
+  int (*encode)(const std::vector<std::string>& tokens);  // nullptr: the profile has none
+  void (*doc)();                                          // nullptr: the profile has none
+
+  // End to end: its bundled scenarios and its simulated board behind the DDS bus.
+  std::string_view scenarios;  // folder, from the top of the tree
+  int (*sim_run)(const SimRunArgs&);
+  int (*sim_board)(const SimBoardArgs&);
+
+  // Proofs: its obligations.
+  std::vector<model::smt::Obligation> (*obligations)();
+
+  // Gate: the folders (or files) whose line and branch coverage the gate requires, and the
+  // command that cross-builds its core and checks its size against its MCU.
+  std::vector<std::string_view> coverage_paths;
+  std::string_view size_check;
+};
+
+const std::vector<Profile>& profiles();
+// nullptr for an unknown name.
+const Profile* find_profile(std::string_view name);
+
+// Adds --profile to a subcommand (default xy, one of profiles() or `list`).
+void add_profile_option(CLI::App* sub, std::string& name);
+// The profile add_profile_option accepted (never nullptr after a successful parse).
+const Profile* chosen_profile(const std::string& name);
+// The table `--profile list` prints: name, controller, requirements, MCU.
+void print_profiles();
+
+// Defined by each profile's adapter file (profile_<name>.cpp).
+Profile xy_profile();
+
+}  // namespace ap::cli
