@@ -1,4 +1,4 @@
-// DDS test bus latency (issue 9 item 8): lockstep round trips PcEndpoint::step() -> board echo,
+// DDS test bus latency (docs/sim.md): lockstep round trips PcEndpoint::step() -> board echo,
 // two participants in one process (threads) and in two processes, beside `ddsperf` ping-pong on
 // the same machine with the same loopback configuration. docs/dds.md lists the numbers.
 //

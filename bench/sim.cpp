@@ -1,4 +1,4 @@
-// The simulated PC and board in lockstep (issue 9 item 8, docs/sim.md): bus frames per wall
+// The simulated PC and board in lockstep (docs/sim.md): bus frames per wall
 // second and virtual time per wall time, running a bundled scenario end to end over DDS (board
 // in-process, outputs off), and the simulated board alone (ticks per second, no bus).
 // The DDS round trip beside ddsperf is bench/dds.cpp.

@@ -214,7 +214,7 @@ Outcome ctest_stage(const std::string& labels, const std::string& junit, const s
 
 Outcome proofs_stage(gate::Run& run, const std::string& log) {
   if (slurp(source_dir() + "/cli/cmd_prove.cpp").find("not available yet") != std::string::npos) {
-    return {Result::NotRun, "axisproof prove is still the placeholder (issue 7)"};
+    return {Result::NotRun, "axisproof prove is still the placeholder (docs/proofs.md)"};
   }
   const int st = run_logged(quote(self_exe()) + " prove --profile " + std::string(g_profile->name), log, R"(^\[\d+/\d+\])");
   const std::string text = slurp(log);

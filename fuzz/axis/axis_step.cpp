@@ -1,5 +1,5 @@
 // core/axis step() driven directly by a fuzz-decoded script, with the motion safety
-// properties (issue 6) asserted after every tick; any violation aborts.
+// properties (docs/motion.md) asserted after every tick; any violation aborts.
 //
 // Input: byte 0 flags (bit 0: raw config, any bit pattern; bit 1: raw start state; bit 2:
 // start homed), then the config (raw: 8 x int32; else 10 bytes scaled into the documented

@@ -1,5 +1,5 @@
 // The board core driven by a fuzz-decoded script of events, with the safety properties of
-// issue 6 asserted after every tick. Any violation aborts (a finding; the replay ctest
+// docs/motion.md asserted after every tick. Any violation aborts (a finding; the replay ctest
 // fails on it).
 //
 // Script: a sequence of ops, each one byte (low nibble = op) plus arguments:

@@ -1,5 +1,5 @@
 // Test-side driver and per-tick checker for the axis core. The checker restates the
-// requirements of issue 6 from the outside (continuous stopping distance, own endstop and
+// requirements of docs/motion.md from the outside (continuous stopping distance, own endstop and
 // block bookkeeping); it never calls the core's own planning helpers.
 #pragma once
 

@@ -2,7 +2,7 @@
 // random ticks, the way the PC and the board supervisor will drive them: jog held by repeats
 // every 100 ms, reversals, absolute/relative moves, retargets ahead-too-close and behind the
 // carriage, stop, emergency stop, endstop events, block/unblock, link loss (watchdog).
-// After every tick, every axis is checked against the requirements of issue 6 (Rig::check).
+// After every tick, every axis is checked against the requirements of docs/motion.md (Rig::check).
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 #include <rapidcheck/state.h>

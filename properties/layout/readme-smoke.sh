@@ -55,7 +55,11 @@ case $key in
     expect 1 'NOT RUN' ./axisproof gate --out "$tmp/out" --junit "$tmp/junit.xml" "${args[@]}"
     [[ $(grep -c 'NOT RUN' <<<"$out") -ge ${#stages[@]} ]] || fail "the verdict table lists fewer than ${#stages[@]} NOT RUN stages"
     for f in gate/report.md gate/report.html release/manifest.json; do [[ -s $tmp/out/$f ]] || fail "gate wrote no $f"; done
-    grep -q '<testsuite' "$tmp/junit.xml" || fail "gate wrote no JUnit XML" ;;
+    grep -q '<testsuite' "$tmp/junit.xml" || fail "gate wrote no JUnit XML"
+    grep -q 'profile xy' <<<"$out" || fail "the verdict does not name the profile it judged"
+    # The profiles the commands know (docs/profiles.md), and a name they do not know.
+    expect 0 '^xy +wireless XY positioning platform' ./axisproof gate --profile list
+    expect 2 'not in \{list,xy\}' ./axisproof gate --profile nosuch ;;
   axisproof-test)
     expect 0 '100% tests passed' ./axisproof test --preset "$preset" -R '^cli\.unknown_subcommand_exits_2$' ;;
   axisproof-prove)
@@ -78,7 +82,8 @@ case $key in
     expect 0 '' ./axisproof frame encode seq=1 x=stop y=goto:20000
     frame=$(tail -n 1 <<<"$out")
     grep -qF -- "$frame" docs/protocol.md || fail "encode printed '$frame', which docs/protocol.md does not show"
-    expect 0 'goto' ./axisproof frame decode "$frame" ;;
+    expect 0 'goto' ./axisproof frame decode "$frame"
+    expect 0 'goto' ./axisproof frame decode --profile xy "$frame" ;;
   axisproof-regs)
     expect 0 'IHOLD_IRUN' ./axisproof regs
     expect 0 '^register,address,access,field,mask,shift,width,signed' ./axisproof regs --format csv

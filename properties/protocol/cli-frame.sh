@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `axisproof frame` contract (issue 3 item 5): encode/decode round trip, typed errors with
+# `axisproof frame` contract (docs/protocol.md): encode/decode round trip, typed errors with
 # byte offsets, exit 0 only when every input decoded, 1 otherwise, 2 for usage errors.
 # Usage: cli-frame.sh <path to axisproof>
 set -u

@@ -1,4 +1,4 @@
-// The properties of issue 3 ("Must show"), over frames drawn from the codec tables.
+// The wire contract's properties (docs/protocol.md), over frames drawn from the codec tables.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 

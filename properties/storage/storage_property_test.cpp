@@ -44,7 +44,7 @@ constexpr std::size_t kSaveBytes = kSpoilBytes + kRecordWriteBytes + kReadBackBy
 
 }  // namespace
 
-// Issue 5: for random sets and every cut point k of a save, the next boot loads exactly the
+// docs/storage.md: for random sets and every cut point k of a save, the next boot loads exactly the
 // old set or exactly the new one; and which one is fixed by k: new iff k >= kCommitPoint
 // (the protocol's commit point, whatever the target copy held before).
 TEST(storage_power_cut, every_cut_point_of_a_save_gives_old_or_new) {

@@ -1,4 +1,4 @@
-// Axis obligations (issue 7). Each states its claim, its method and its assumptions; the
+// Axis obligations (docs/proofs.md). Each states its claim, its method and its assumptions; the
 // same text is in docs/proofs.md. Step-level claims use the encoding with Kernels::Contract
 // (kernel results constrained only by the lemmas axis.dd.* / axis.best_fit.contract, which
 // are proved about the exact kernels in QF_NIA, and whose side conditions

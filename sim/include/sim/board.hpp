@@ -1,4 +1,4 @@
-// The simulated board (issue 9 item 2): the real board core (core/board, unchanged) over
+// The simulated board (docs/sim.md): the real board core (core/board, unchanged) over
 // virtual peripherals. A test fixture, so it may use the heap and the device models:
 //   two TMC2130 device models (SPI), the MB85RS256B FRAM model (SPI), two RLS Orbis absolute
 //   encoders (14-bit position + turn count, read by eq. 7-2 at boot), four Hall endstops

@@ -1,4 +1,4 @@
-// The simulated PC and the run of a scenario over the DDS test bus (issue 9 items 3-6,
+// The simulated PC and the run of a scenario over the DDS test bus (docs/sim.md,
 // docs/sim.md).
 //
 //   serve_board()   the board side: one SimBoard behind one BoardEndpoint; answers every bus

@@ -1,4 +1,4 @@
-// Scenario files for the simulated PC (issue 9 item 3; format in docs/scenarios.md).
+// Scenario files for the simulated PC (docs/sim.md; format in docs/scenarios.md).
 //
 // A scenario is a header (name, duration, boards, timing, board setup, link faults), timed user
 // actions ("at 1.5 s goto x 20 mm") and expectations ("expect at 6 s x.pos == 20 mm tol 5 um").

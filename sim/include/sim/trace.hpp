@@ -57,7 +57,7 @@ class TraceWriter {
 
 namespace ap::sim {
 
-// STEP edge times as the quantised timer produces them (issue 6 item 4). The core decides how
+// STEP edge times as the quantised timer produces them (docs/motion.md). The core decides how
 // many pulses go out in a tick; the timer, programmed by step_timer() for the tick's speed,
 // spaces them (PSC+1)(ARR+1) clocks of 80 MHz apart, continuing from the previous edge. If the
 // core asks for more pulses than fit before the tick ends (it can be ahead by one pulse: the

@@ -1,7 +1,7 @@
 #pragma once
 // The parameter store: boots from the newest valid of two FRAM copies and saves by writing
 // the other copy, reading it back and comparing. A power cut during a save can only tear the
-// copy being written, so the last verified copy survives (seed §4.13, issue 5).
+// copy being written, so the last verified copy survives (seed §4.13, docs/storage.md).
 #include <array>
 #include <cstdint>
 

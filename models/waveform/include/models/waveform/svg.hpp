@@ -1,4 +1,4 @@
-// SVG line plots of a run (issue 9 item 6): position and speed against time, one panel each,
+// SVG line plots of a run (docs/sim.md): position and speed against time, one panel each,
 // several traces per panel (like thesis Obr. 9-2, one curve per acceleration, and Obr. 9-3).
 // Self-contained SVG 1.1 (no scripts, no external fonts or CSS); long series are decimated per
 // pixel column keeping the min/max envelope. parse_xml() is the small well-formedness checker

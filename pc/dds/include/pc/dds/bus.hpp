@@ -1,4 +1,4 @@
-// ap::dds: the DDS test bus between a simulated PC and simulated boards (issue 9, docs/dds.md).
+// ap::dds: the DDS test bus between a simulated PC and simulated boards (docs/dds.md).
 //
 // PC-side code (exceptions and the heap are fine). Wraps the Cyclone DDS C API in RAII types:
 //   Participant    one DDS participant on a domain (shared by several endpoints in one process)
