@@ -27,28 +27,40 @@ struct CommandSpec {
   static const c::CommandInfo* find_axis(std::uint32_t id) { return c::find_command(id); }
 
   static bool read_field(std::span<const std::uint8_t> b, std::size_t o, SubscriberSlot& s, std::size_t* bad) {
-    const auto id = fields::read_digits(b, o, c::kSubIdWidth, bad);
-    if (!id) return false;
-    const auto arg = fields::read_digits(b, o + c::kSubIdWidth, c::kSubArgWidth, bad);
-    if (!arg) return false;
-    s = {static_cast<c::SubscriberId>(*id), static_cast<std::uint8_t>(*arg)};
-    return true;
+    return slot::read(b, o, s, bad);
   }
-  static void write_field(std::span<std::uint8_t> out, std::size_t o, const SubscriberSlot& s) {
-    fields::write_digits(out, o, c::kSubIdWidth, static_cast<std::uint32_t>(s.id));
-    fields::write_digits(out, o + c::kSubIdWidth, c::kSubArgWidth, s.arg);
-  }
-  static Rejection check_field(const SubscriberSlot& s, std::size_t o) {
-    const auto* info = c::find_subscriber(static_cast<std::uint32_t>(s.id));
-    if (info == nullptr) return {c::FrameError::UnknownSubscriber, static_cast<std::uint16_t>(o)};
-    if (!info->arg_range.contains(s.arg)) return {c::FrameError::ArgOutOfRange, static_cast<std::uint16_t>(o + c::kSubIdWidth)};
-    return {};
-  }
+  static void write_field(std::span<std::uint8_t> out, std::size_t o, const SubscriberSlot& s) { slot::write(out, o, s); }
+  static Rejection check_field(const SubscriberSlot& s, std::size_t o) { return slot::check(s, o); }
 };
 
 using Codec = FrameCodec<CommandSpec>;
 
 }  // namespace
+
+namespace slot {
+
+bool read(std::span<const std::uint8_t> b, std::size_t at, SubscriberSlot& s, std::size_t* bad) {
+  const auto id = fields::read_digits(b, at, c::kSubIdWidth, bad);
+  if (!id) return false;
+  const auto arg = fields::read_digits(b, at + c::kSubIdWidth, c::kSubArgWidth, bad);
+  if (!arg) return false;
+  s = {static_cast<c::SubscriberId>(*id), static_cast<std::uint8_t>(*arg)};
+  return true;
+}
+
+void write(std::span<std::uint8_t> out, std::size_t at, const SubscriberSlot& s) {
+  fields::write_digits(out, at, c::kSubIdWidth, static_cast<std::uint32_t>(s.id));
+  fields::write_digits(out, at + c::kSubIdWidth, c::kSubArgWidth, s.arg);
+}
+
+Rejection check(const SubscriberSlot& s, std::size_t at) {
+  const auto* info = c::find_subscriber(static_cast<std::uint32_t>(s.id));
+  if (info == nullptr) return {c::FrameError::UnknownSubscriber, static_cast<std::uint16_t>(at)};
+  if (!info->arg_range.contains(s.arg)) return {c::FrameError::ArgOutOfRange, static_cast<std::uint16_t>(at + c::kSubIdWidth)};
+  return {};
+}
+
+}  // namespace slot
 
 Rejection validate(const CommandFrame& f) { return Codec::check(f); }
 Rejection decode_command(std::span<const std::uint8_t> b, CommandFrame& out) { return Codec::decode(b, out); }

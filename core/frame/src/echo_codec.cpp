@@ -27,24 +27,20 @@ struct EchoSpec {
   static const c::StatusInfo* find_axis(std::uint32_t id) { return c::find_status(id); }
 
   static bool read_field(std::span<const std::uint8_t> b, std::size_t o, SubscriberPacket& p, std::size_t* bad) {
-    const auto id = fields::read_digits(b, o, c::kSubIdWidth, bad);
-    if (!id) return false;
-    const auto arg = fields::read_digits(b, o + c::kSubIdWidth, c::kSubArgWidth, bad);
-    if (!arg) return false;
+    SubscriberSlot s;
+    if (!slot::read(b, o, s, bad)) return false;
     const auto data = fields::read_data(b, o + c::kSlotWidth, bad);
     if (!data) return false;
-    p = {{static_cast<c::SubscriberId>(*id), static_cast<std::uint8_t>(*arg)}, *data};
+    p = {s, *data};
     return true;
   }
   static void write_field(std::span<std::uint8_t> out, std::size_t o, const SubscriberPacket& p) {
-    fields::write_digits(out, o, c::kSubIdWidth, static_cast<std::uint32_t>(p.slot.id));
-    fields::write_digits(out, o + c::kSubIdWidth, c::kSubArgWidth, p.slot.arg);
+    slot::write(out, o, p.slot);
     fields::write_data(out, o + c::kSlotWidth, p.data);
   }
   static Rejection check_field(const SubscriberPacket& p, std::size_t o) {
+    if (auto r = slot::check(p.slot, o); !r.ok()) return r;
     const auto* info = c::find_subscriber(static_cast<std::uint32_t>(p.slot.id));
-    if (info == nullptr) return {c::FrameError::UnknownSubscriber, static_cast<std::uint16_t>(o)};
-    if (!info->arg_range.contains(p.slot.arg)) return {c::FrameError::ArgOutOfRange, static_cast<std::uint16_t>(o + c::kSubIdWidth)};
     if (!info->range.contains(p.data)) return {c::FrameError::DataOutOfRange, static_cast<std::uint16_t>(o + c::kSlotWidth)};
     return {};
   }

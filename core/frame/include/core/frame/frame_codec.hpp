@@ -23,6 +23,15 @@
 
 namespace ap::frame {
 
+// One subscriber slot (id + argument), the field a command carries and the head of the packet
+// an echo carries; the readers leave `s` untouched on failure.
+namespace slot {
+bool read(std::span<const std::uint8_t> b, std::size_t at, SubscriberSlot& s, std::size_t* bad);
+void write(std::span<std::uint8_t> out, std::size_t at, const SubscriberSlot& s);
+// Known id and argument in range; the offset names the bad field.
+Rejection check(const SubscriberSlot& s, std::size_t at);
+}  // namespace slot
+
 template <class Spec>
 struct FrameCodec {
   using Frame = typename Spec::Frame;
