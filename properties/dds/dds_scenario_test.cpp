@@ -153,6 +153,32 @@ TEST(dds_scenario, HoldsAppliesOperatorAndTolerance) {
   EXPECT_THROW((void)sc::holds(s.expectations[2], um(1.0)), std::invalid_argument);
 }
 
+// The runner judges with holds() too (sim/src/pc.cpp), so what it adds lives here: `blocked`
+// stands for every blocking status, and a value exactly on a bound after a unit conversion
+// (0.1 + 0.2 is not 0.3 in binary) still holds.
+TEST(dds_scenario, HoldsBlockedStatusAndBoundsAfterConversion) {
+  const auto s = sc::parse(kHead +
+                           "expect at 1 s x.status == blocked\nexpect at 1 s y.status != blocked\n"
+                           "expect at 1 s board.state == blocked\nexpect at 1 s x.pos == 0.3 um\n"
+                           "expect at 1 s x.pos <= 0.3 um\nexpect at 1 s x.pos >= 0.3 um\n",
+                           "t.scn");
+  const sc::Value blk_usb{std::string("blk_usb")};
+  const sc::Value blk_charger{std::string("blk_charger")};
+  EXPECT_TRUE(sc::holds(s.expectations[0], blk_usb));
+  EXPECT_TRUE(sc::holds(s.expectations[0], blk_charger));
+  EXPECT_FALSE(sc::holds(s.expectations[0], sc::Value{std::string("reached")}));
+  EXPECT_FALSE(sc::holds(s.expectations[1], blk_usb));
+  EXPECT_TRUE(sc::holds(s.expectations[1], sc::Value{std::string("idle")}));
+  // Only an axis status widens `blocked`: board.state names its own state.
+  EXPECT_FALSE(sc::holds(s.expectations[2], blk_usb));
+  EXPECT_TRUE(sc::holds(s.expectations[2], sc::Value{std::string("blocked")}));
+  const sc::Value sum{sc::Quantity{0.1 + 0.2, sc::Dim::length}};  // 0.30000000000000004
+  EXPECT_TRUE(sc::holds(s.expectations[3], sum));
+  EXPECT_TRUE(sc::holds(s.expectations[4], sum));
+  EXPECT_TRUE(sc::holds(s.expectations[5], sc::Value{sc::Quantity{0.3 - 1e-12, sc::Dim::length}}));
+  EXPECT_FALSE(sc::holds(s.expectations[3], sc::Value{sc::Quantity{0.31, sc::Dim::length}}));
+}
+
 // Random scenarios survive print -> parse unchanged.
 RC_GTEST_PROP(dds_scenario, PrintParseIsIdentity, ()) {
   sc::Scenario s;

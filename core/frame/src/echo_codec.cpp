@@ -40,8 +40,10 @@ struct EchoSpec {
   }
   static Rejection check_field(const SubscriberPacket& p, std::size_t o) {
     if (auto r = slot::check(p.slot, o); !r.ok()) return r;
-    const auto* info = c::find_subscriber(static_cast<std::uint32_t>(p.slot.id));
-    if (!info->range.contains(p.data)) return {c::FrameError::DataOutOfRange, static_cast<std::uint16_t>(o + c::kSlotWidth)};
+    const auto* info = c::find_subscriber(static_cast<std::uint32_t>(p.slot.id));  // known: checked above
+    if (info != nullptr && !info->range.contains(p.data)) {
+      return {c::FrameError::DataOutOfRange, static_cast<std::uint16_t>(o + c::kSlotWidth)};
+    }
     return {};
   }
 };

@@ -114,6 +114,7 @@ void EchoModel::begin_tick(const Env& env) {
   for (auto& x : ax_) {
     x.refused.reset();
     x.started_now = false;
+    x.stopped_move_now = false;
   }
   at_tick_start_ = ax_;
   events_.clear();
@@ -330,6 +331,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
       // motion.md §6: a ramped stop, always accepted.
       supersede(a);
       if (x.act != Activity::Idle) {
+        x.stopped_move_now = x.act == Activity::Position;
         x.act = Activity::Braking;
         x.stop_requested = true;
       }
@@ -500,6 +502,9 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
       case Activity::Braking:
         x.act = Activity::Idle;
         if (was_moving && endstop_in_dir) x.ended = Ended::Endstop;
+        // A stop given in the very tick a move comes to rest on its target ended nothing the
+        // move did not end itself: REACHED (docs/echo-model.md "Decisions").
+        else if (x.stopped_move_now && m.pos == x.target) x.ended = Ended::Reached;
         else if (x.stop_requested) x.ended = Ended::Stopped;
         else if (x.link_ended) x.ended = Ended::LinkLost;
         x.stop_requested = false;

@@ -159,7 +159,8 @@ class EchoModel {
     std::optional<codec::CommandId> refused;
     bool stop_requested = false;
     bool link_ended = false;
-    bool started_now = false;  // a motion command was accepted in this cycle  // the watchdog or the session ended the jog (G15)
+    bool started_now = false;  // a motion command was accepted in this cycle
+    bool stopped_move_now = false;  // a stop of this cycle ended a move (Position) toward target
     AxisMotion last{};
   };
 
