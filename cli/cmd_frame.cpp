@@ -27,7 +27,6 @@ void add_frame(CLI::App& app) {
   add_profile_option(decode, decode_profile);
   decode->final_callback([] {
     const Profile* p = chosen_profile(decode_profile);
-    if (p == nullptr) return;
     bool ok = true;
     if (frames.empty()) {
       const std::string data((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
@@ -46,7 +45,6 @@ void add_frame(CLI::App& app) {
   add_profile_option(encode, encode_profile);
   encode->final_callback([] {
     const Profile* p = chosen_profile(encode_profile);
-    if (p == nullptr) return;
     if (p->encode == nullptr) {
       std::fprintf(stderr, "axisproof frame encode: profile %s has no readable command form\n", encode_profile.c_str());
       exit_status() = 1;
@@ -60,7 +58,6 @@ void add_frame(CLI::App& app) {
   add_profile_option(doc, doc_profile);
   doc->final_callback([] {
     const Profile* p = chosen_profile(doc_profile);
-    if (p == nullptr) return;
     if (p->doc == nullptr) {
       std::fprintf(stderr, "axisproof frame doc: profile %s has no generated tables\n", doc_profile.c_str());
       exit_status() = 1;

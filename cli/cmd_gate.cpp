@@ -213,6 +213,7 @@ Outcome ctest_stage(const std::string& labels, const std::string& junit, const s
 }
 
 Outcome proofs_stage(gate::Run& run, const std::string& log) {
+  if (g_profile->obligations == nullptr) return {Result::NotRun, "the profile has no proof obligations yet"};
   if (slurp(source_dir() + "/cli/cmd_prove.cpp").find("not available yet") != std::string::npos) {
     return {Result::NotRun, "axisproof prove is still the placeholder (docs/proofs.md)"};
   }
@@ -440,6 +441,7 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
 }
 
 Outcome m4_stage(gate::Run& run, const std::string& log) {
+  if (g_profile->size_check.empty()) return {Result::NotRun, "the profile has no MCU size check yet"};
   const int st = run_logged(std::string(g_profile->size_check) + " --out " + quote(release_dir()), log, R"(^total|^flash|m4-build:)");
   run.details.m4_size_md = slurp(release_dir() + "/m4-size.md");
   const std::string txt = slurp(release_dir() + "/m4-size.txt");

@@ -37,7 +37,12 @@ bool selected(const std::string& name, const std::vector<std::string>& only) {
 int prove(const ProveOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<model::smt::Obligation> chosen;
-  for (auto& o : chosen_profile(opt.profile)->obligations()) {
+  const Profile* p = chosen_profile(opt.profile);
+  if (p->obligations == nullptr) {
+    std::fprintf(stderr, "axisproof prove: profile %s has no proof obligations yet (docs/profiles.md)\n", opt.profile.c_str());
+    return 1;
+  }
+  for (auto& o : p->obligations()) {
     if (selected(o.name, opt.only)) chosen.push_back(std::move(o));
   }
   if (chosen.empty()) {

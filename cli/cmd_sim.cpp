@@ -3,6 +3,7 @@
 //   axisproof sim run [--profile P] scenarios/NAME [--realtime] [--domain N --join] [--out ROOT] [--step-ms MS]
 #include "cli.hpp"
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -38,7 +39,11 @@ void add_sim(CLI::App& app) {
   add_profile_option(board, board_profile);
   board->final_callback([] {
     const Profile* p = chosen_profile(board_profile);
-    if (p == nullptr) return;
+    if (p->sim_board == nullptr) {
+      std::fprintf(stderr, "axisproof sim board: profile %s has no simulated board yet (docs/profiles.md)\n", board_profile.c_str());
+      exit_status() = 2;
+      return;
+    }
     exit_status() = p->sim_board(b);
   });
 
@@ -55,7 +60,11 @@ void add_sim(CLI::App& app) {
   add_profile_option(run, run_profile);
   run->final_callback([] {
     const Profile* p = chosen_profile(run_profile);
-    if (p == nullptr) return;
+    if (p->sim_run == nullptr) {
+      std::fprintf(stderr, "axisproof sim run: profile %s has no simulated board yet (docs/profiles.md)\n", run_profile.c_str());
+      exit_status() = 2;
+      return;
+    }
     SimRunArgs a = r;
     a.scenario = scenario_path(r.scenario, *p);
     exit_status() = p->sim_run(a);

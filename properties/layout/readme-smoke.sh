@@ -59,7 +59,7 @@ case $key in
     grep -q 'profile xy' <<<"$out" || fail "the verdict does not name the profile it judged"
     # The profiles the commands know (docs/profiles.md), and a name they do not know.
     expect 0 '^xy +wireless XY positioning platform' ./axisproof gate --profile list
-    expect 2 'not in \{list,xy\}' ./axisproof gate --profile nosuch ;;
+    expect 2 '--profile: nosuch not in \{list,' ./axisproof gate --profile nosuch ;;
   axisproof-test)
     expect 0 '100% tests passed' ./axisproof test --preset "$preset" -R '^cli\.unknown_subcommand_exits_2$' ;;
   axisproof-prove)

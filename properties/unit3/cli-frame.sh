@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# `axisproof frame decode --profile unit3` (docs/unit3.md "The wire"): the thesis's strings
+# decode to what the thesis says they mean, typed errors name the byte, a capture is cut at
+# `;`, and the parts the profile has not brought yet fail saying so.
+# Usage: cli-frame.sh <path to axisproof>
+set -u
+ap=$1
+fail=0
+expect() {  # expect <wanted status> <description> <command...>
+  local want=$1 what=$2; shift 2
+  out=$("$@" 2>&1); got=$?
+  if [[ $got != "$want" ]]; then echo "FAIL $what: exit $got, wanted $want"; echo "$out"; fail=1; fi
+}
+has() { grep -qF -- "$1" <<<"$out" || { echo "FAIL $2: no '$1' in: $out"; fail=1; }; }
+expect 0 "thesis examples" "$ap" frame decode --profile unit3 'Y000000000016000;' 'Y000000000000500;'
+has 'line 1: OK move Y by 16000 counts' "full-step example"
+has 'line 2: OK move Y by 500 counts' "1/32 example"
+expect 1 "mode digit 6" "$ap" frame decode --profile unit3 'M506;'
+has 'REJECTED mode_out_of_range at byte 3' "typed error"
+expect 0 "a report" "$ap" frame decode --profile unit3 'Z-000000000000000500;'
+has 'report Z counter -500' "report"
+expect 0 "capture" bash -c "printf 'D+-+;\r\nM505;T046;C;G;' | '$ap' frame decode --profile unit3"
+has '5 command(s) decoded, 0 rejected' "capture count"
+expect 1 "capture with a lost byte" bash -c "printf 'X00000000016000;G;' | '$ap' frame decode --profile unit3"
+has 'byte 0: REJECTED bad_length' "lost byte"
+expect 2 "no simulated board yet" "$ap" sim run --profile unit3 anything
+has 'profile unit3 has no simulated board yet' "missing part named"
+expect 1 "no obligations yet" "$ap" prove --profile unit3
+has 'profile unit3 has no proof obligations yet' "missing proofs named"
+exit $fail
