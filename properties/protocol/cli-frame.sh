@@ -4,12 +4,7 @@
 # Usage: cli-frame.sh <path to axisproof>
 set -u
 ap=$1
-fail=0
-expect() {  # expect <wanted status> <description> <command...>
-  local want=$1 what=$2; shift 2
-  out=$("$@" 2>&1); got=$?
-  if [[ $got != "$want" ]]; then echo "FAIL $what: exit $got, wanted $want"; echo "$out"; fail=1; fi
-}
+. "$(dirname "$0")/../cli-expect.sh"
 expect 0 "encode issue example" "$ap" frame encode x=jog:+:fast y=goto:20000 sub=battery
 frame=$out
 [[ $frame == '>00002000002030200000100000000000000F98D;' ]] || { echo "FAIL encode bytes: $frame"; fail=1; }

@@ -5,12 +5,7 @@
 # Usage: cli-frame.sh <path to axisproof>
 set -u
 ap=$1
-fail=0
-expect() {  # expect <wanted status> <description> <command...>
-  local want=$1 what=$2; shift 2
-  out=$("$@" 2>&1); got=$?
-  if [[ $got != "$want" ]]; then echo "FAIL $what: exit $got, wanted $want"; echo "$out"; fail=1; fi
-}
+. "$(dirname "$0")/../cli-expect.sh"
 has() { grep -qF -- "$1" <<<"$out" || { echo "FAIL $2: no '$1' in: $out"; fail=1; }; }
 expect 0 "thesis examples" "$ap" frame decode --profile unit3 'Y000000000016000;' 'Y000000000000500;'
 has 'line 1: OK move Y by 16000 counts' "full-step example"
