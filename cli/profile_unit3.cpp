@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "models/smt/modules.hpp"
 #include "profile.hpp"
 #include "protocol/unit3_wire/dialect.hpp"
 
@@ -100,8 +101,8 @@ Profile unit3_profile() {
       .scenarios = "scenarios/unit3",
       .sim_run = nullptr,
       .sim_board = nullptr,
-      .obligations = nullptr,
-      .coverage_paths = {"protocol/unit3_wire"},
+      .obligations = &model::smt::unit3_obligations,
+      .coverage_paths = {"protocol/unit3_wire", "core/unit3_joystick"},
       .size_check = "",
   };
 }

@@ -20,6 +20,6 @@ expect 1 "capture with a lost byte" bash -c "printf 'X00000000016000;G;' | '$ap'
 has 'byte 0: REJECTED bad_length' "lost byte"
 expect 2 "no simulated board yet" "$ap" sim run --profile unit3 anything
 has 'profile unit3 has no simulated board yet' "missing part named"
-expect 1 "no obligations yet" "$ap" prove --profile unit3
-has 'profile unit3 has no proof obligations yet' "missing proofs named"
+expect 0 "its proofs" "$ap" prove --profile unit3
+has '3 obligations: 3 proved' "unit3 obligations"
 exit $fail
