@@ -21,5 +21,5 @@ has 'byte 0: REJECTED bad_length' "lost byte"
 expect 2 "no simulated board yet" "$ap" sim run --profile unit3 anything
 has 'profile unit3 has no simulated board yet' "missing part named"
 expect 0 "its proofs" "$ap" prove --profile unit3
-has '3 obligations: 3 proved' "unit3 obligations"
+has '4 obligations: 4 proved' "unit3 obligations"
 exit $fail

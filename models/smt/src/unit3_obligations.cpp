@@ -1,10 +1,12 @@
-// The 3-axis USB unit's obligations (docs/unit3.md). The joystick's are stated over the
+// The 3-axis USB unit's obligations (docs/unit3.md). The counter's are stated in 64-bit
+// two's complement over the core's own bounds (core/unit3_axis/counting.hpp). The joystick's are stated over the
 // mapping as the core computes it: deflection() (core/unit3_joystick/joystick.hpp) is
 // evaluated for each of the 1024 ADC codes and the results become a decision tree over a
 // symbolic 10-bit code, so a change to the core's mapping is a change to what is proved.
 #include <cstdint>
 #include <string>
 
+#include "core/unit3_axis/counting.hpp"
 #include "core/unit3_joystick/joystick.hpp"
 #include "models/smt/modules.hpp"
 #include "models/smt/obligation.hpp"
@@ -69,6 +71,29 @@ ObligationList unit3_obligations() {
                    const z3::expr claim = z3::implies(below, z3::uge(a.index, b.index)) &&
                                           z3::implies(above, z3::ule(a.index, b.index));
                    return check_valid(a.c, claim, ms, {{"a", a.adc}, {"b", b.adc}, {"index_a", a.index}, {"index_b", b.index}});
+                 }});
+  out.push_back({"unit3.counter.no_overflow",
+                 "QF_BV 64-bit: from any counter within +-(10^18 - 1), a move of any count up to the wire's "
+                 "15 digits in either direction is computed without signed overflow, and plan_move's range check "
+                 "keeps the counter within +-(10^18 - 1) (kMaxCounter, kMaxMoveCount of the core)",
+                 [](unsigned ms) {
+                   z3::context& c = shared_context();
+                   namespace a = ap::unit3_axis;
+                   const z3::expr counter = c.bv_const("counter", 64);
+                   const z3::expr count = c.bv_const("count", 64);
+                   const z3::expr down = c.bool_const("down");
+                   const z3::expr max_c = c.bv_val(a::kMaxCounter, 64);
+                   const z3::expr max_m = c.bv_val(static_cast<std::uint64_t>(a::kMaxMoveCount), 64);
+                   const z3::expr pre = z3::sle(-max_c, counter) && z3::sle(counter, max_c) && z3::ule(count, max_m);
+                   // plan_move: target = counter -/+ count, in int64.
+                   const z3::expr target = z3::ite(down, counter - count, counter + count);
+                   // The same sum in 66 bits cannot overflow: equal after sign extension means none did.
+                   const z3::expr wide = z3::ite(down, z3::sext(counter, 2) - z3::zext(count, 2),
+                                                 z3::sext(counter, 2) + z3::zext(count, 2));
+                   const z3::expr no_wrap = z3::sext(target, 2) == wide;
+                   const z3::expr accepted = z3::sle(-max_c, target) && z3::sle(target, max_c);
+                   const z3::expr claim = z3::implies(pre, no_wrap && z3::implies(accepted, z3::sle(-max_c, target) && z3::sle(target, max_c)));
+                   return check_valid(c, claim, ms, {{"counter", counter}, {"count", count}, {"down", down}});
                  }});
   return out;
 }
