@@ -102,7 +102,7 @@ Profile unit3_profile() {
       .sim_run = nullptr,
       .sim_board = nullptr,
       .obligations = &model::smt::unit3_obligations,
-      .coverage_paths = {"protocol/unit3_wire", "core/unit3_joystick", "core/unit3_axis"},
+      .coverage_paths = {"protocol/unit3_wire", "core/unit3_joystick", "core/unit3_axis", "core/unit3_settings"},
       .size_check = "",
   };
 }
