@@ -20,7 +20,8 @@ std::uint8_t crc8(std::span<const std::uint8_t> bytes) {
   for (const std::uint8_t b : bytes) {
     crc = static_cast<std::uint8_t>(crc ^ b);
     for (int k = 0; k < 8; ++k) {
-      crc = (crc & 0x80U) != 0 ? static_cast<std::uint8_t>((crc << 1U) ^ 0x07U) : static_cast<std::uint8_t>(crc << 1U);
+      const unsigned shifted = static_cast<unsigned>(crc) << 1U;
+      crc = static_cast<std::uint8_t>((crc & 0x80U) != 0 ? shifted ^ 0x07U : shifted);
     }
   }
   return crc;
