@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,10 @@ int run(const std::string& command_line);
 // Runs and captures stdout; exit status in *status.
 std::string run_capture(const std::string& command_line, int* status);
 std::string quote(const std::string& s);
+// A string's bytes, for the codecs' span interfaces.
+inline std::span<const std::uint8_t> bytes_of(const std::string& s) {
+  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
+}
 
 // Configures the preset if its build tree does not exist yet, then builds it
 // incrementally (optionally only some targets). Returns true on success.

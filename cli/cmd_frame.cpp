@@ -26,7 +26,7 @@ void add_frame(CLI::App& app) {
   decode->add_option("frames", frames, "Frames, one per argument (quote them); none: read stdin");
   add_profile_option(decode, decode_profile);
   decode->final_callback([] {
-    const Profile* p = chosen_profile(decode_profile);
+    const Profile* p = find_profile(decode_profile);
     bool ok = true;
     if (frames.empty()) {
       const std::string data((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
@@ -44,7 +44,7 @@ void add_frame(CLI::App& app) {
       ->required();
   add_profile_option(encode, encode_profile);
   encode->final_callback([] {
-    const Profile* p = chosen_profile(encode_profile);
+    const Profile* p = find_profile(encode_profile);
     if (p->encode == nullptr) {
       std::fprintf(stderr, "axisproof frame encode: profile %s has no readable command form\n", encode_profile.c_str());
       exit_status() = 1;
@@ -57,7 +57,7 @@ void add_frame(CLI::App& app) {
   auto* doc = sub->add_subcommand("doc", "Print the command, status, subscriber and error tables (markdown)");
   add_profile_option(doc, doc_profile);
   doc->final_callback([] {
-    const Profile* p = chosen_profile(doc_profile);
+    const Profile* p = find_profile(doc_profile);
     if (p->doc == nullptr) {
       std::fprintf(stderr, "axisproof frame doc: profile %s has no generated tables\n", doc_profile.c_str());
       exit_status() = 1;

@@ -22,7 +22,6 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <regex>
 #include <set>
@@ -34,7 +33,7 @@ namespace fs = std::filesystem;
 
 namespace ap::cli {
 
-std::vector<FuzzTarget> read_fuzz_targets(const std::string& build) {
+std::vector<FuzzTarget> read_fuzz_targets(const std::string& build, std::string_view profile) {
   std::vector<FuzzTarget> out;
   std::ifstream in(build + "/fuzz_targets.txt");
   std::string line;
@@ -44,7 +43,7 @@ std::vector<FuzzTarget> read_fuzz_targets(const std::string& build) {
     std::stringstream ss(line);
     std::string part;
     while (std::getline(ss, part, '\t')) f.push_back(part);
-    if (f.size() < 5) continue;
+    if (f.size() < 5 || f[4] != profile) continue;
     out.push_back({f[0], f[1], f[2], f[3], f[4]});
   }
   return out;
@@ -376,10 +375,7 @@ std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
       return results;
     }
   }
-  auto all = read_fuzz_targets(build);
-  // Only the chosen profile's targets (the fifth column of fuzz_targets.txt, AP_PROFILE).
-  std::vector<FuzzTarget> mine;
-  std::copy_if(all.begin(), all.end(), std::back_inserter(mine), [&](const FuzzTarget& t) { return t.profile == o.profile; });
+  const std::vector<FuzzTarget> mine = read_fuzz_targets(build, o.profile);
   std::vector<FuzzTarget> chosen;
   if (o.targets.empty()) {
     chosen = mine;
@@ -409,7 +405,7 @@ std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
     *ok = false;
     return results;
   }
-  all = read_fuzz_targets(build);  // the build may have re-run CMake
+  const std::vector<FuzzTarget> all = read_fuzz_targets(build, o.profile);  // the build may have re-run CMake
   for (const auto& c : chosen) {
     auto it = std::find_if(all.begin(), all.end(), [&](const FuzzTarget& t) { return t.name == c.name; });
     FuzzStats st = it == all.end() ? FuzzStats{} : fuzz_one(*it, o);

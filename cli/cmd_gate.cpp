@@ -308,10 +308,7 @@ void fuzz_short_run(const FuzzTarget& t, gate::Run& run, const std::string& log,
 
 Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
-  std::vector<FuzzTarget> listed;
-  for (const auto& t : read_fuzz_targets(build_dir("asan"))) {
-    if (t.profile == g_profile->name) listed.push_back(t);
-  }
+  const std::vector<FuzzTarget> listed = read_fuzz_targets(build_dir("asan"), g_profile->name);
   if (listed.empty()) return {Result::NotRun, "no fuzz targets of this profile (fuzz/<group>/ with ap_add_fuzz_target)"};
   const std::string not_cfl = " -L " + quote(profile_labels()) + " -E '^fuzz\\.clusterfuzzlite_build_sh$'";
   int st = 0;
@@ -349,14 +346,14 @@ Outcome e2e_stage(const std::string& log) {
 }
 
 Outcome mutation_stage(gate::Run& run, const std::string& log) {
-  bool any = false;
+  // The runner picks a profile's mutants by their Profile: header; asked first for the
+  // profile's own, so a profile without any is NOT RUN rather than judged on the harness's.
+  int listed = 0;
+  const std::string own = run_capture("cd " + quote(source_dir()) + " && ci/mutate --list --profile " +
+                                          std::string(g_profile->name) + " 2>/dev/null",
+                                      &listed);
+  if (listed != 0 || trim(own).empty()) return {Result::NotRun, "no mutants of this profile in ci/mutants/"};
   std::error_code ec;
-  // The profile's mutants and the harness's own (README, bootstrap, CLI), like the tests.
-  const std::string mine = "Profile: " + std::string(g_profile->name) + "\n";
-  for (const auto& e : fs::directory_iterator(source_dir() + "/ci/mutants", ec)) {
-    any = any || (e.path().extension() == ".patch" && slurp(e.path().string()).find(mine) != std::string::npos);
-  }
-  if (!any) return {Result::NotRun, "no mutants of this profile in ci/mutants/"};
   fs::remove(source_dir() + "/out/mutate/report.tsv", ec);
   // The runner judges each mutant in build/dev and build/asan (overlay mode, ci/mutate), so
   // both must have built. Its baseline of the Killed-by checks always runs (the earlier stages
@@ -373,6 +370,7 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
       earlier_pass = false;
     }
   }
+  // The profile's mutants and the harness's own (README, bootstrap, CLI), like the tests.
   const int st = run_logged("ci/mutate --profile " + std::string(g_profile->name) + ",harness --jobs " + std::to_string(build_jobs()) +
                                 (earlier_pass ? " --no-wide-baseline" : ""),
                             log,
@@ -498,7 +496,7 @@ void add_gate(CLI::App& app) {
     fs::remove_all(gate_dir(), ec);
     fs::remove_all(release_dir(), ec);
     fs::create_directories(gate_dir() + "/logs");
-    g_profile = chosen_profile(profile);
+    g_profile = find_profile(profile);
     gate::Run run;
     run.profile = std::string(g_profile->name) + " (" + std::string(g_profile->title) + ")";
     run.version = AP_VERSION;

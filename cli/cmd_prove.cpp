@@ -37,7 +37,7 @@ bool selected(const std::string& name, const std::vector<std::string>& only) {
 int prove(const ProveOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<model::smt::Obligation> chosen;
-  const Profile* p = chosen_profile(opt.profile);
+  const Profile* p = find_profile(opt.profile);
   if (p->obligations == nullptr) {
     std::fprintf(stderr, "axisproof prove: profile %s has no proof obligations yet (docs/profiles.md)\n", opt.profile.c_str());
     return 1;

@@ -38,7 +38,7 @@ void add_sim(CLI::App& app) {
   board->add_option("--idle-timeout", b.idle_s, "Exit after this many seconds without a command")->default_val(600);
   add_profile_option(board, board_profile);
   board->final_callback([] {
-    const Profile* p = chosen_profile(board_profile);
+    const Profile* p = find_profile(board_profile);
     if (p->sim_board == nullptr) {
       std::fprintf(stderr, "axisproof sim board: profile %s has no simulated board yet (docs/profiles.md)\n", board_profile.c_str());
       exit_status() = 2;
@@ -59,7 +59,7 @@ void add_sim(CLI::App& app) {
   run->add_option("--step-ms", r.step_ms, "Lockstep granularity in ms (telemetry sampling)")->default_val(10);
   add_profile_option(run, run_profile);
   run->final_callback([] {
-    const Profile* p = chosen_profile(run_profile);
+    const Profile* p = find_profile(run_profile);
     if (p->sim_run == nullptr) {
       std::fprintf(stderr, "axisproof sim run: profile %s has no simulated board yet (docs/profiles.md)\n", run_profile.c_str());
       exit_status() = 2;

@@ -2,6 +2,7 @@
 // The fuzzing engine driver shared by `axisproof fuzz` and the gate's fuzz smoke stage
 // (implemented in cmd_fuzz.cpp).
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace ap::cli {
@@ -15,8 +16,9 @@ struct FuzzTarget {
   std::string profile; // the firmware profile it belongs to (docs/profiles.md)
 };
 
-// Reads <build_dir>/fuzz_targets.txt; empty when the file is missing or lists nothing.
-std::vector<FuzzTarget> read_fuzz_targets(const std::string& build_dir);
+// Reads <build_dir>/fuzz_targets.txt, keeping the targets of one profile (its fifth column,
+// AP_PROFILE); empty when the file is missing or lists none of them.
+std::vector<FuzzTarget> read_fuzz_targets(const std::string& build_dir, std::string_view profile);
 
 struct FuzzOptions {
   std::string profile = "xy";        // only this profile's targets

@@ -60,13 +60,11 @@ struct Profile {
 };
 
 const std::vector<Profile>& profiles();
-// nullptr for an unknown name.
+// nullptr for an unknown name (never after add_profile_option accepted it).
 const Profile* find_profile(std::string_view name);
 
 // Adds --profile to a subcommand (default xy, one of profiles() or `list`).
 void add_profile_option(CLI::App* sub, std::string& name);
-// The profile add_profile_option accepted (never nullptr after a successful parse).
-const Profile* chosen_profile(const std::string& name);
 // The table `--profile list` prints: name, controller, requirements, MCU.
 void print_profiles();
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "models/smt/modules.hpp"
 #include "profile.hpp"
 #include "protocol/unit3_wire/dialect.hpp"
@@ -16,10 +17,6 @@ namespace ap::cli {
 namespace {
 
 namespace w = ap::unit3_wire;
-
-std::span<const std::uint8_t> bytes_of(const std::string& s) {
-  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
-}
 
 const char* axis_name(w::Axis a) { return a == w::Axis::X ? "X" : a == w::Axis::Y ? "Y" : "Z"; }
 

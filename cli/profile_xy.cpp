@@ -30,10 +30,6 @@ namespace {
 
 // ------------------------------------------------------------------------------ frame codec
 
-std::span<const std::uint8_t> bytes_of(const std::string& s) {
-  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
-}
-
 std::string printable(const std::string& s) {
   std::string out;
   for (const char c : s) {

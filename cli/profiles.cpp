@@ -37,8 +37,6 @@ void add_profile_option(CLI::App* sub, std::string& name) {
       });
 }
 
-const Profile* chosen_profile(const std::string& name) { return find_profile(name); }
-
 void print_profiles() {
   std::printf("%-8s %-36s %-32s %s\n", "profile", "controller", "requirements", "MCU (size check)");
   for (const auto& p : profiles()) {
