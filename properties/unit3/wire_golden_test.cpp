@@ -3,7 +3,9 @@
 // computed with the code under test.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -118,6 +120,23 @@ TEST(Unit3Wire, CounterReportsHaveOneWidth) {
   EXPECT_EQ(w::parse_report(bytes_of("X+999999999999999999;")), (w::Report{w::Axis::X, 999'999'999'999'999'999LL}));
   EXPECT_EQ(w::parse_report(bytes_of("X-000000000000000000;")), std::nullopt);  // zero is +0
   EXPECT_EQ(w::parse_report(bytes_of("X+00000000000000000;")), std::nullopt);   // 17 digits
+}
+
+// The unit's refusal reply E<2 digits>; (docs/unit3.md "Replies").
+TEST(Unit3Wire, ErrorReplies) {
+  std::array<std::uint8_t, 4> out{};
+  ASSERT_EQ(w::format_error(2, out), 4U);
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(out.data()), 4), "E02;");
+  ASSERT_EQ(w::format_error(23, out), 4U);
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(out.data()), 4), "E23;");
+  EXPECT_EQ(w::format_error(0, out), 0U);
+  EXPECT_EQ(w::format_error(100, out), 0U);
+  EXPECT_EQ(w::parse_error(bytes_of("E20;")), std::optional<std::uint8_t>(20));
+  EXPECT_EQ(w::parse_error(bytes_of("E00;")), std::nullopt);
+  EXPECT_EQ(w::parse_error(bytes_of("E2;")), std::nullopt);
+  EXPECT_EQ(w::parse_error(bytes_of("E2x;")), std::nullopt);
+  EXPECT_EQ(w::parse_error(bytes_of("F20;")), std::nullopt);
+  EXPECT_EQ(w::parse_error(bytes_of("E201")), std::nullopt);
 }
 
 // The framer: split and joined chunks, line ends between commands, an over-long line.

@@ -163,6 +163,23 @@ std::optional<Report> parse_report(std::span<const std::uint8_t> line) {
   return Report{static_cast<Axis>(line[0] - 'X'), line[1] == '-' ? -v : v};
 }
 
+std::size_t format_error(std::uint8_t code, std::span<std::uint8_t, kErrorLength> out) {
+  if (code == 0 || code > 99) return 0;
+  out[0] = 'E';
+  out[1] = static_cast<std::uint8_t>('0' + code / 10U);
+  out[2] = static_cast<std::uint8_t>('0' + code % 10U);
+  out[3] = kEnd;
+  return kErrorLength;
+}
+
+std::optional<std::uint8_t> parse_error(std::span<const std::uint8_t> line) {
+  if (line.size() != kErrorLength || line[0] != 'E' || line[3] != kEnd) return std::nullopt;
+  if (!is_digit(line[1]) || !is_digit(line[2])) return std::nullopt;
+  const auto code = static_cast<std::uint8_t>((line[1] - '0') * 10 + (line[2] - '0'));
+  if (code == 0) return std::nullopt;
+  return code;
+}
+
 std::optional<Framer::Event> Framer::push(std::uint8_t b) {
   const std::uint32_t at = offset_++;
   if (dropping_) {

@@ -7,7 +7,8 @@
 //   T<d><d><d>;        thread of X, Y, Z: d = 0..6, an index into the pitch table
 //   C;                 zero the three step counters
 //   G;                 send the stored settings
-// Unit -> PC: X|Y|Z<sign><18 digits>; (a step counter), M<d><d><d>; and T<d><d><d>; (settings).
+// Unit -> PC: X|Y|Z<sign><18 digits>; (a step counter), M<d><d><d>; and T<d><d><d>; (settings),
+// E<2 digits>; (a command refused: the line's Error, or the unit's reason, docs/unit3.md).
 // Every command has one fixed length, so a byte lost on the 19200-baud line always leaves a
 // line of the wrong length or shape: it is rejected with a typed error and runs nothing.
 // Heap-free and integer-only: the unit's firmware parses with it.
@@ -81,6 +82,14 @@ struct Report {
   friend constexpr bool operator==(const Report&, const Report&) = default;
 };
 std::optional<Report> parse_report(std::span<const std::uint8_t> line);
+
+// The unit's refusal of a command, E<2 digits>; (kErrorLength bytes). Codes 01..07 are the
+// line's Error; the unit's own reasons start at kFirstUnitCode (docs/unit3.md "Replies").
+inline constexpr std::size_t kErrorLength = 4;
+inline constexpr std::uint8_t kFirstUnitCode = 20;
+// 0 when code is 0 or above 99.
+std::size_t format_error(std::uint8_t code, std::span<std::uint8_t, kErrorLength> out);
+std::optional<std::uint8_t> parse_error(std::span<const std::uint8_t> line);
 
 // Bytes in any chunks -> lines. CR, LF, space and tab between commands are skipped (a PC
 // terminal's line ends); inside a command they are bytes like any other. A line without `;`
