@@ -441,12 +441,15 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
 Outcome m4_stage(gate::Run& run, const std::string& log) {
   if (g_profile->size_check.empty()) return {Result::NotRun, "the profile has no MCU size check yet"};
   const int st = run_logged(std::string(g_profile->size_check) + " --out " + quote(release_dir()), log, R"(^total|^flash|m4-build:)");
-  run.details.m4_size_md = slurp(release_dir() + "/m4-size.md");
-  const std::string txt = slurp(release_dir() + "/m4-size.txt");
+  const std::string table = release_dir() + "/" + std::string(g_profile->size_tag) + "-size";
+  run.details.m4_size_md = slurp(table + ".md");
+  const std::string txt = slurp(table + ".txt");
   std::smatch m;
   std::string key = st == 0 ? "built" : "cross build or check failed (see log)";
-  if (std::regex_search(txt, m, std::regex(R"(flash (\d+) B of \d+ B \(([\d.]+)%\), RAM (\d+) B of \d+ B \(([\d.]+)%\))"))) {
-    key = "flash " + m[1].str() + " B (" + m[2].str() + " % of 1 MB), RAM " + m[3].str() + " B (" + m[4].str() + " % of 128 KB)";
+  if (std::regex_search(txt, m, std::regex(R"(flash (\d+) B of (\d+) B \(([\d.]+)%\), RAM (\d+) B of (\d+) B \(([\d.]+)%\))"))) {
+    const auto kb = [](const std::string& b) { return std::to_string(std::stoll(b) / 1024) + " KB"; };
+    key = "flash " + m[1].str() + " B (" + m[3].str() + " % of " + kb(m[2].str()) + "), RAM " + m[4].str() + " B (" + m[6].str() +
+          " % of " + kb(m[5].str()) + ")";
     if (st != 0) key += "; check failed";
   }
   const std::string text = slurp(log);
@@ -499,6 +502,7 @@ void add_gate(CLI::App& app) {
     g_profile = find_profile(profile);
     gate::Run run;
     run.profile = std::string(g_profile->name) + " (" + std::string(g_profile->title) + ")";
+    run.size_tag = std::string(g_profile->size_tag);
     run.version = AP_VERSION;
     run.date = now_utc();
     int st = 0;

@@ -41,6 +41,7 @@ struct Run {
   double seconds = 0;
   std::string version, git_hash, date;
   std::string profile;  // the firmware profile judged (docs/profiles.md)
+  std::string size_tag = "m4";  // its release libraries (out/release/<tag>/) and size table
 };
 
 void print_table(const Run& run);

@@ -254,8 +254,9 @@ void write_manifest(const Run& run, const std::string& release) {
   const std::string arm = first_line("arm-none-eabi-g++ --version");
   std::vector<std::string> libs;
   std::error_code ec;
-  if (fs::is_directory(release + "/m4", ec)) {
-    for (const auto& e : fs::directory_iterator(release + "/m4", ec)) libs.push_back("m4/" + e.path().filename().string());
+  const std::string& tag = run.size_tag;
+  if (fs::is_directory(release + "/" + tag, ec)) {
+    for (const auto& e : fs::directory_iterator(release + "/" + tag, ec)) libs.push_back(tag + "/" + e.path().filename().string());
   }
   std::ofstream j(release + "/manifest.json");
   j << "{\n  \"name\": \"axisproof\",\n  \"version\": \"" << json_escape(run.version) << "\",\n  \"git\": \""
@@ -279,9 +280,9 @@ void write_manifest(const Run& run, const std::string& release) {
   m << "# axisproof release artifact\n\n";
   m << "- profile: " << run.profile << "\n- version: " << run.version << "\n- git: " << run.git_hash << "\n- date: " << run.date
     << "\n- gate verdict: " << (run.pass ? "PASS" : "FAIL") << "\n- host gcc: " << gcc << "\n- host clang: " << clang
-    << "\n- arm-none-eabi: " << arm << "\n- Cortex-M4 libraries (m4/): ";
+    << "\n- arm-none-eabi: " << arm << "\n- Cortex-M4 libraries (" << tag << "/): ";
   for (size_t i = 0; i < libs.size(); ++i) m << (i ? ", " : "") << libs[i];
-  m << (libs.empty() ? "none" : "") << "\n- size table: m4-size.md\n"
+  m << (libs.empty() ? "none" : "") << "\n- size table: " << tag << "-size.md\n"
     << "- MCU port: not included (startup code, linker script, peripheral drivers are a later issue)\n\n";
   std::vector<std::vector<std::string>> rows;
   for (const auto& r : run.rows) rows.push_back({r.stage, to_string(r.outcome.result), fmt_seconds(r.seconds), r.outcome.key});

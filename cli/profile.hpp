@@ -53,10 +53,12 @@ struct Profile {
   // Proofs: its obligations.
   std::vector<model::smt::Obligation> (*obligations)();
 
-  // Gate: the folders (or files) whose line and branch coverage the gate requires, and the
-  // command that cross-builds its core and checks its size against its MCU.
+  // Gate: the folders (or files) whose line and branch coverage the gate requires, the
+  // command that cross-builds its core and checks its size against its MCU, and the name its
+  // libraries and size table get under out/release (<size_tag>/, <size_tag>-size.{txt,md}).
   std::vector<std::string_view> coverage_paths;
   std::string_view size_check;
+  std::string_view size_tag;
 };
 
 const std::vector<Profile>& profiles();

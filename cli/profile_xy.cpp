@@ -238,6 +238,7 @@ Profile xy_profile() {
       .coverage_paths = {"core/frame", "core/tmc2130", "core/storage", "core/axis", "core/board", "protocol/codec", "pc",
                          "sim/src/scenario.cpp"},
       .size_check = "ci/m4-build",
+      .size_tag = "m4",
   };
 }
 
