@@ -199,6 +199,7 @@ bool PcView::tick(const Pins& p, std::uint8_t endstops, std::vector<int>& stoppe
 void PcView::power_cycle() {
   settings_ = stored_;
   for (auto& ax : axes_) ax = Axis{};
+  latched_ = {1, 1, 1};  // D is not stored: + after power-up (docs/unit3.md "The board")
   for (std::size_t a = 0; a < 3; ++a) axes_[a].mode = settings_.mode[a];
   pending_.clear();
   dropping_ = false;
