@@ -52,7 +52,12 @@ void Board::on_key(std::uint8_t code) {
     case m::Action::SetSpeed:
       if (motor_.running()) motor_.set_speed(settings_.speed_centi);  // checked by the menu for this drive
       break;
-    case m::Action::SetDrive: motor_.set_drive(settings_.drive); break;  // the menu allows it at rest only
+    case m::Action::SetDrive:
+      // At rest (the menu allows it only then); the coils may move the rotor half a step, and
+      // no step interrupt reports it, so the shown angle is taken here.
+      motor_.set_drive(settings_.drive);
+      shown_angle_ = motor_.angle_tenths();
+      break;
     case m::Action::Rejected: display_.error = true; break;
     case m::Action::None:
     case m::Action::SetMode:

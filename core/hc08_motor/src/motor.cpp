@@ -13,7 +13,7 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b :
 }  // namespace
 
 Motor::Motor(hc08_drive::FullStep full, hc08_drive::PhaseOrder order)
-    : seq_(hc08_drive::Drive::Full, full), order_(order), full_(full) {}
+    : seq_(hc08_drive::Drive::Full, full), order_(order) {}
 
 bool Motor::at_or_below_start() const {
   return ps_ > 0 || tmod_ >= t::tmod_at_hz(t::start_hz(seq_.drive()));

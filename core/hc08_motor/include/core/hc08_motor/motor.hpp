@@ -76,7 +76,6 @@ class Motor {
 
   hc08_drive::Sequencer seq_;
   hc08_drive::PhaseOrder order_;
-  hc08_drive::FullStep full_;
   Mode mode_ = Mode::A;
   bool running_ = false;
   bool right_ = true;
