@@ -552,10 +552,16 @@ void add_gate(CLI::App& app) {
       run.pass = run.pass && o.result == Result::Pass;
     }
     run.seconds = seconds_since(start);
-    // SVG plots of the bundled scenarios, if `axisproof sim` left any.
+    // SVG plots of the bundled scenarios, if `axisproof sim` left any: the XY runs write
+    // out/sim/NAME/, another profile's out/sim/<profile>/NAME/; only this profile's are shown.
     if (fs::is_directory(src + "/out/sim", ec)) {
       for (const auto& e : fs::recursive_directory_iterator(src + "/out/sim", ec)) {
-        if (e.path().extension() == ".svg") run.details.plots.push_back("../sim/" + fs::relative(e.path(), src + "/out/sim").string());
+        if (e.path().extension() != ".svg") continue;
+        const std::string rel = fs::relative(e.path(), src + "/out/sim").string();
+        const std::string top = rel.substr(0, rel.find('/'));
+        const Profile* owner = top != "xy" ? find_profile(top) : nullptr;
+        const bool mine = owner != nullptr ? owner == g_profile : g_profile->name == "xy";
+        if (mine) run.details.plots.push_back("../sim/" + rel);
       }
       std::sort(run.details.plots.begin(), run.details.plots.end());
     }

@@ -1,16 +1,22 @@
 // The 3-axis USB unit (seed 001) as a profile (docs/profiles.md, docs/unit3.md). So far it
 // brings its wire dialect (protocol/unit3_wire): `frame decode --profile unit3` reads its
-// captures, and its tests, fuzz target and mutants carry the unit3 label. The parts it has not
-// brought yet (core, simulated board, proofs, size check) are empty here, and the commands
-// that need them say so instead of running something else.
+// captures, and its tests, fuzz target and mutants carry the unit3 label; `sim run` and
+// `sim board --profile unit3` run its simulated unit over the DDS bus (docs/unit3-sim.md). The
+// parts it has not brought yet are empty here, and the commands that need them say so instead
+// of running something else.
 #include <cstdio>
+#include <iostream>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli.hpp"
+#include "core/unit3_board/unit.hpp"
 #include "models/smt/modules.hpp"
 #include "profile.hpp"
 #include "protocol/unit3_wire/dialect.hpp"
+#include "sim/unit3.hpp"
 
 namespace ap::cli {
 
@@ -42,6 +48,18 @@ std::string describe(const w::Command& c) {
 bool decode_line(const std::string& text, const std::string& label) {
   if (const auto r = w::parse_report(bytes_of(text))) {
     std::printf("%s: OK report %s counter %lld\n", label.c_str(), axis_name(r->axis), static_cast<long long>(r->count));
+    return true;
+  }
+  if (const auto code = w::parse_error(bytes_of(text))) {
+    // A refusal: the line's own error (01..07) or the unit's (docs/unit3.md "Replies").
+    const char* unit = unit3_board::refusal_key(*code);
+    const bool line_error = *code <= static_cast<std::uint8_t>(w::Error::TooLong);
+    if (unit == nullptr && !line_error) {
+      std::printf("%s: REJECTED unknown refusal code %u\n", label.c_str(), static_cast<unsigned>(*code));
+      return false;
+    }
+    std::printf("%s: OK refusal E%02u %s\n", label.c_str(), static_cast<unsigned>(*code),
+                unit != nullptr ? unit : w::error_key(static_cast<w::Error>(*code)));
     return true;
   }
   w::Command c;
@@ -83,6 +101,72 @@ bool decode_stream(const std::string& capture) {
   return ok && n.accepted > 0;
 }
 
+// axisproof sim board --profile unit3: boards for `sim run --profile unit3 --join --domain N`
+// (docs/unit3-sim.md). Each starts from the default EEPROM image: a joined run cannot pass its
+// scenario's `eeprom` line over the bus before the board exists.
+int sim_board(const SimBoardArgs& a) {
+  namespace u3 = ap::sim::unit3;
+  try {
+    dds::use_loopback_config(false);
+    auto pp = dds::make_participant(a.domain);
+    std::vector<std::thread> threads;
+    std::vector<int> rc(a.boards, -1);
+    std::fprintf(stderr, "axisproof sim board --profile unit3: %u board(s) on DDS domain %u (loopback only)\n", a.boards, a.domain);
+    for (std::uint32_t b = 0; b < a.boards; ++b) {
+      u3::BoardOptions o;
+      o.id = b;
+      if (b == 0) o.out_dir = a.out;
+      threads.emplace_back([&, o] {
+        try {
+          rc[o.id] = u3::serve_board(pp, o, std::chrono::seconds(a.idle_s));
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "board %u: %s\n", o.id, e.what());
+          rc[o.id] = 3;
+        }
+      });
+    }
+    for (auto& t : threads) t.join();
+    int status = 0;
+    for (std::uint32_t b = 0; b < a.boards; ++b) {
+      if (rc[b] != 0) {
+        std::fprintf(stderr, "board %u ended with code %d (2 = idle timeout)\n", b, rc[b]);
+        status = 1;
+      }
+    }
+    return status;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "axisproof sim board: %s\n", e.what());
+    return 1;
+  }
+}
+
+// axisproof sim run --profile unit3 scenarios/unit3/NAME.scn: exit 0 pass, 1 fail, 2 error.
+int sim_run(const SimRunArgs& a) {
+  namespace u3 = ap::sim::unit3;
+  try {
+    const u3::Scenario s = u3::parse_file(a.scenario);
+    if (a.realtime) throw std::runtime_error("--realtime: the unit3 run has no realtime mode");
+    u3::RunOptions o;
+    o.join = a.join;
+    if (a.join && a.domain < 0) throw std::runtime_error("--join needs --domain");
+    if (a.join && s.eeprom != u3::Eeprom::Default) throw std::runtime_error("--join: a joined board starts from the default EEPROM");
+    if (a.domain >= 0) o.domain = static_cast<std::uint32_t>(a.domain);
+    // The shared default root out/sim holds the XY runs; this profile's go to
+    // out/sim/unit3/NAME. A root given with --out is used as given (ROOT/NAME).
+    o.out_root = a.out_root == "out/sim" ? std::string("out/sim/unit3") : a.out_root;
+    o.step_us = static_cast<std::int64_t>(a.step_ms) * 1000;
+    if (o.step_us <= 0) throw std::runtime_error("--step-ms must be positive");
+    o.log = &std::cerr;
+    const u3::RunResult r = u3::run_scenario(s, o);
+    std::cout << u3::format_report(s, r);
+    if (!r.out_dir.empty()) std::cout << "  outputs: " << r.out_dir << "/{trace.csv,waveforms.vcd,plots.svg,report.txt}\n";
+    return r.pass ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "axisproof sim run: %s\n", e.what());
+    return 2;
+  }
+}
+
 }  // namespace
 
 Profile unit3_profile() {
@@ -96,8 +180,8 @@ Profile unit3_profile() {
       .encode = nullptr,
       .doc = nullptr,
       .scenarios = "scenarios/unit3",
-      .sim_run = nullptr,
-      .sim_board = nullptr,
+      .sim_run = &sim_run,
+      .sim_board = &sim_board,
       .obligations = &model::smt::unit3_obligations,
       .coverage_paths = {"protocol/unit3_wire", "core/unit3_joystick", "core/unit3_axis", "core/unit3_settings",
                          "core/unit3_ramp", "core/unit3_menu", "core/unit3_board"},

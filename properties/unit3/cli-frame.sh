@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `axisproof frame decode --profile unit3` (docs/unit3.md "The wire"): the thesis's strings
 # decode to what the thesis says they mean, typed errors name the byte, a capture is cut at
-# `;`, and the parts the profile has not brought yet fail saying so.
+# `;`, the unit's refusal replies are named, and a scenario runs through `sim run --profile`.
 # Usage: cli-frame.sh <path to axisproof>
 set -u
 ap=$1
@@ -18,8 +18,17 @@ expect 0 "capture" bash -c "printf 'D+-+;\r\nM505;T046;C;G;' | '$ap' frame decod
 has '5 command(s) decoded, 0 rejected' "capture count"
 expect 1 "capture with a lost byte" bash -c "printf 'X00000000016000;G;' | '$ap' frame decode --profile unit3"
 has 'byte 0: REJECTED bad_length' "lost byte"
-expect 2 "no simulated board yet" "$ap" sim run --profile unit3 anything
-has 'profile unit3 has no simulated board yet' "missing part named"
+expect 0 "refusals" "$ap" frame decode --profile unit3 'E20;' 'E02;'
+has 'line 1: OK refusal E20 busy' "unit refusal named"
+has 'line 2: OK refusal E02 bad_length' "line error named"
+expect 1 "unknown refusal" "$ap" frame decode --profile unit3 'E19;'
+has 'REJECTED unknown refusal code 19' "unknown code"
+out_dir=$(mktemp -d)
+trap 'rm -rf "$out_dir"' EXIT
+src=$(cd "$(dirname "$0")/../.." && pwd)
+expect 0 "a bundled scenario" "$ap" sim run --profile unit3 "$src/scenarios/unit3/thesis_full_step.scn" --out "$out_dir"
+has 'PASS' "scenario verdict"
+[[ -s $out_dir/thesis_full_step/trace.csv && -s $out_dir/thesis_full_step/waveforms.vcd ]] || { echo "FAIL outputs: no trace.csv / waveforms.vcd in $out_dir/thesis_full_step"; fail=1; }
 expect 0 "its proofs" "$ap" prove --profile unit3
-has '4 obligations: 4 proved' "unit3 obligations"
+has '5 obligations: 5 proved' "unit3 obligations"
 exit $fail

@@ -23,6 +23,16 @@ std::uint8_t refusal_code(unit3_axis::Error e) {
 
 }  // namespace
 
+const char* refusal_key(std::uint8_t code) {
+  switch (code) {
+    case static_cast<std::uint8_t>(Refusal::Busy): return "busy";
+    case static_cast<std::uint8_t>(Refusal::NotMultiple): return "not_multiple";
+    case static_cast<std::uint8_t>(Refusal::CounterRange): return "counter_range";
+    case static_cast<std::uint8_t>(Refusal::Endstop): return "endstop";
+    default: return nullptr;
+  }
+}
+
 Unit::Unit(std::span<std::uint8_t, unit3_settings::kImageSize> eeprom) : eeprom_(eeprom) {
   const auto l = unit3_settings::load(eeprom_);
   loaded_ = l.status;
@@ -50,12 +60,12 @@ void Unit::execute(const w::Command& c) {
     case w::Kind::StepMode:
       settings_.mode = c.digit;
       save_settings();
-      send_settings();
+      send_settings(settings_);
       return;
     case w::Kind::Thread:
       settings_.thread = c.digit;
       save_settings();
-      send_settings();
+      send_settings(settings_);
       return;
     case w::Kind::Clear:
       for (std::size_t a = 0; a < kAxes; ++a) {
@@ -63,7 +73,7 @@ void Unit::execute(const w::Command& c) {
         send_counter(a);
       }
       return;
-    case w::Kind::Get: send_settings(); return;
+    case w::Kind::Get: send_settings(unit3_settings::load(eeprom_).settings); return;  // what is stored [T §2.3]
   }
 }
 
@@ -107,7 +117,7 @@ void Unit::press(unit3_menu::Button b) {
       return;
     case unit3_menu::Effect::Save:
       save_settings();
-      send_settings();
+      send_settings(settings_);
       return;
   }
 }
@@ -201,11 +211,11 @@ void Unit::save_settings() {
   ++eeprom_writes_;
 }
 
-void Unit::send_settings() {
+void Unit::send_settings(const unit3_settings::Settings& s) {
   for (const auto kind : {w::Kind::StepMode, w::Kind::Thread}) {
     w::Command c;
     c.kind = kind;
-    c.digit = kind == w::Kind::StepMode ? settings_.mode : settings_.thread;
+    c.digit = kind == w::Kind::StepMode ? s.mode : s.thread;
     std::array<std::uint8_t, w::kMaxLine> line{};
     const std::size_t n = w::format(c, line);
     tx_.put(std::span<const std::uint8_t>(line.data(), n));

@@ -73,11 +73,11 @@ std::vector<std::string> PcView::receive(const std::string& bytes, std::uint8_t 
   return out;
 }
 
-std::vector<std::string> PcView::settings_replies() const {
+std::vector<std::string> PcView::settings_replies(const Settings& s) {
   std::string m = "M", t = "T";
   for (int a = 0; a < 3; ++a) {
-    m += static_cast<char>('0' + settings_.mode[static_cast<std::size_t>(a)]);
-    t += static_cast<char>('0' + settings_.thread[static_cast<std::size_t>(a)]);
+    m += static_cast<char>('0' + s.mode[static_cast<std::size_t>(a)]);
+    t += static_cast<char>('0' + s.thread[static_cast<std::size_t>(a)]);
   }
   return {m + ";", t + ";"};
 }
@@ -101,9 +101,9 @@ std::vector<std::string> PcView::line(const std::string& l, std::uint8_t endstop
     case 'T':
       for (std::size_t a = 0; a < 3; ++a) (l[0] == 'M' ? settings_.mode : settings_.thread)[a] = l[1 + a] - '0';
       stored_ = settings_;
-      return settings_replies();
+      return settings_replies(settings_);
     case 'C': return zero();
-    case 'G': return settings_replies();
+    case 'G': return settings_replies(stored_);  // G reads the EEPROM [T §2.3]: not a menu edit before its Back
     default: break;
   }
   const auto ai = static_cast<std::size_t>(l[0] - 'X');
@@ -153,7 +153,7 @@ std::vector<std::string> PcView::press(int button) {
       if (button == Back) {
         window_ = 1;
         stored_ = settings_;
-        return settings_replies();
+        return settings_replies(settings_);
       }
       return {};
     }

@@ -40,6 +40,10 @@ enum class Refusal : std::uint8_t {
   Endstop = 23,       // towards a closed endstop; also sent when one cuts a PC move short
 };
 
+// The name of a refusal code (busy, not_multiple, counter_range, endstop); nullptr for a code
+// that is not one.
+const char* refusal_key(std::uint8_t code);
+
 // Endstop inputs, bit 2a = axis a's minimum end, bit 2a + 1 = its maximum end, 1 = switch
 // closed (the pins are active low [T]; the board layer inverts them) [D].
 constexpr std::uint8_t endstop_bit(std::size_t axis, bool max_end) {
@@ -100,7 +104,7 @@ class Unit {
   void run_axis(std::size_t a, const Inputs& in);
   void stop_axis(std::size_t a);
   void save_settings();
-  void send_settings();
+  void send_settings(const unit3_settings::Settings& s);
   void send_counter(std::size_t a);
   void send_error(std::uint8_t code);
 

@@ -49,7 +49,7 @@ class PcView {
     bool running = false;  // as the last tick's pins showed
   };
   std::vector<std::string> line(const std::string& l, std::uint8_t endstops);
-  std::vector<std::string> settings_replies() const;
+  static std::vector<std::string> settings_replies(const Settings& s);
   std::vector<std::string> zero();
 
   Settings settings_{};
