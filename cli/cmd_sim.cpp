@@ -4,8 +4,11 @@
 #include "cli.hpp"
 
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "profile.hpp"
 
@@ -24,6 +27,39 @@ std::string scenario_path(const std::string& arg, const Profile& p) {
 }
 
 }  // namespace
+
+int host_boards(const SimBoardArgs& a, std::string_view label, const BoardServer& serve) {
+  try {
+    dds::use_loopback_config(false);
+    auto pp = dds::make_participant(a.domain);
+    std::vector<std::thread> threads;
+    std::vector<int> rc(a.boards, -1);
+    std::fprintf(stderr, "axisproof sim board --profile %.*s: %u board(s) on DDS domain %u (loopback only)\n",
+                 static_cast<int>(label.size()), label.data(), a.boards, a.domain);
+    for (std::uint32_t b = 0; b < a.boards; ++b) {
+      threads.emplace_back([&, b] {
+        try {
+          rc[b] = serve(pp, b, b == 0 ? a.out : std::string(), std::chrono::seconds(a.idle_s));
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "board %u: %s\n", b, e.what());
+          rc[b] = 3;
+        }
+      });
+    }
+    for (auto& t : threads) t.join();
+    int status = 0;
+    for (std::uint32_t b = 0; b < a.boards; ++b) {
+      if (rc[b] != 0) {
+        std::fprintf(stderr, "board %u ended with code %d (2 = idle timeout)\n", b, rc[b]);
+        status = 1;
+      }
+    }
+    return status;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "axisproof sim board: %s\n", e.what());
+    return 1;
+  }
+}
 
 void add_sim(CLI::App& app) {
   auto* sub = app.add_subcommand("sim", "Run a profile's simulated PC and board over the DDS test bus");

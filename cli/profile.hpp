@@ -7,11 +7,15 @@
 // its mutants name it in their `Profile:` header.
 #include <CLI/CLI.hpp>
 
+#include <chrono>
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "models/smt/obligation.hpp"
+#include "pc/dds/bus.hpp"
 
 namespace ap::cli {
 
@@ -60,6 +64,13 @@ struct Profile {
   std::string_view size_check;
   std::string_view size_tag;
 };
+
+// `sim board` for any profile: a.boards boards on one loopback participant of a.domain, one
+// thread each; `serve` runs one (board 0 writes its outputs to `out`) and returns its code
+// (0 after a shutdown, 2 idle timeout). Returns 0 when every board ended with 0.
+using BoardServer = std::function<int(const dds::ParticipantPtr&, std::uint32_t id, const std::string& out,
+                                      std::chrono::seconds idle)>;
+int host_boards(const SimBoardArgs& a, std::string_view label, const BoardServer& serve);
 
 const std::vector<Profile>& profiles();
 // nullptr for an unknown name (never after add_profile_option accepted it).

@@ -8,7 +8,6 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli.hpp"
@@ -160,38 +159,12 @@ void doc() { std::fputs(client::all_tables_md().c_str(), stdout); }
 // -------------------------------------------------------------------------------- simulator
 
 int sim_board(const SimBoardArgs& a) {
-  try {
-    dds::use_loopback_config(false);
-    auto pp = dds::make_participant(a.domain);
-    std::vector<std::thread> threads;
-    std::vector<int> rc(a.boards, -1);
-    std::fprintf(stderr, "axisproof sim board: %u board(s) on DDS domain %u (loopback only)\n", a.boards, a.domain);
-    for (std::uint32_t b = 0; b < a.boards; ++b) {
-      sim::BoardOptions o;
-      o.id = b;
-      if (b == 0) o.out_dir = a.out;
-      threads.emplace_back([&, o] {
-        try {
-          rc[o.id] = sim::serve_board(pp, o, std::chrono::seconds(a.idle_s));
-        } catch (const std::exception& e) {
-          std::fprintf(stderr, "board %u: %s\n", o.id, e.what());
-          rc[o.id] = 3;
-        }
-      });
-    }
-    for (auto& t : threads) t.join();
-    int status = 0;
-    for (std::uint32_t b = 0; b < a.boards; ++b) {
-      if (rc[b] != 0) {
-        std::fprintf(stderr, "board %u ended with code %d (2 = idle timeout)\n", b, rc[b]);
-        status = 1;
-      }
-    }
-    return status;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "axisproof sim board: %s\n", e.what());
-    return 1;
-  }
+  return host_boards(a, "xy", [](const dds::ParticipantPtr& pp, std::uint32_t id, const std::string& out, std::chrono::seconds idle) {
+    sim::BoardOptions o;
+    o.id = id;
+    o.out_dir = out;
+    return sim::serve_board(pp, o, idle);
+  });
 }
 
 int sim_run(const SimRunArgs& a) {

@@ -20,6 +20,7 @@
 
 #include "core/unit3_board/unit.hpp"
 #include "models/unit3/pc_view.hpp"
+#include "replies.hpp"
 
 namespace {
 
@@ -31,16 +32,9 @@ void require(bool ok) {
 }
 
 std::vector<std::string> split(const std::string& rx) {
-  std::vector<std::string> v;
-  std::string cur;
-  for (const char c : rx) {
-    cur += c;
-    if (c == ';') {
-      v.push_back(cur);
-      cur.clear();
-    }
-  }
-  require(cur.empty());  // replies are whole or absent
+  std::string rest;
+  const auto v = ap::unit3_test::split_replies(rx, &rest);
+  require(rest.empty());  // replies are whole or absent
   return v;
 }
 
@@ -57,12 +51,7 @@ struct Rig {
     eeprom.fill(0xFF);
     unit = std::make_unique<u::Unit>(eeprom);
   }
-  std::string take() {
-    std::string s;
-    std::array<std::uint8_t, 64> b{};
-    while (const std::size_t n = unit->take_tx(b)) s.append(b.begin(), b.begin() + static_cast<long>(n));
-    return s;
-  }
+  std::string take() { return ap::unit3_test::take_all(*unit); }
   void byte(std::uint8_t b) {
     unit->receive(b);
     require(split(take()) == model.receive(std::string(1, static_cast<char>(b)), seen));

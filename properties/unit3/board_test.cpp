@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/unit3_board/unit.hpp"
+#include "replies.hpp"
 
 namespace {
 
@@ -33,10 +34,7 @@ struct Rig {
     for (const char c : s) unit.receive(static_cast<std::uint8_t>(c));
     drain();
   }
-  void drain() {
-    std::array<std::uint8_t, 64> buf{};
-    while (const std::size_t n = unit.take_tx(buf)) rx.append(buf.begin(), buf.begin() + static_cast<long>(n));
-  }
+  void drain() { rx += ap::unit3_test::take_all(unit); }
   void run(int ms) {
     for (int i = 0; i < ms; ++i) {
       unit.tick(in);
@@ -55,18 +53,7 @@ struct Rig {
     for (int i = 0; i < max_ms && running(); ++i) run(1);
   }
   // The replies, split after each ';'.
-  std::vector<std::string> replies() const {
-    std::vector<std::string> v;
-    std::string cur;
-    for (const char c : rx) {
-      cur += c;
-      if (c == ';') {
-        v.push_back(cur);
-        cur.clear();
-      }
-    }
-    return v;
-  }
+  std::vector<std::string> replies() const { return ap::unit3_test::split_replies(rx); }
   std::string last_report(char axis) const {
     std::string last;
     for (const auto& r : replies()) {

@@ -16,24 +16,13 @@
 
 #include "core/unit3_board/unit.hpp"
 #include "models/unit3/pc_view.hpp"
+#include "replies.hpp"
 
 namespace {
 
 namespace u = ap::unit3_board;
 using ap::model::unit3::PcView;
-
-std::vector<std::string> split(const std::string& rx) {
-  std::vector<std::string> v;
-  std::string cur;
-  for (const char c : rx) {
-    cur += c;
-    if (c == ';') {
-      v.push_back(cur);
-      cur.clear();
-    }
-  }
-  return v;
-}
+using ap::unit3_test::split_replies;
 
 struct Sut {
   std::array<std::uint8_t, 8> eeprom{};
@@ -44,12 +33,7 @@ struct Sut {
     eeprom.fill(0xFF);
     unit = std::make_unique<u::Unit>(eeprom);
   }
-  std::string take() {
-    std::string s;
-    std::array<std::uint8_t, 64> b{};
-    while (const std::size_t n = unit->take_tx(b)) s.append(b.begin(), b.begin() + static_cast<long>(n));
-    return s;
-  }
+  std::string take() { return ap::unit3_test::take_all(*unit); }
 };
 
 std::string good_line() {
@@ -95,7 +79,7 @@ RC_GTEST_PROP(Unit3ModelProps, ThePcSeesWhatTheModelSays, ()) {
         for (const char c : l) s.unit->receive(static_cast<std::uint8_t>(c));
         want = m.receive(l, s.seen_endstops);
         got = s.take();
-        RC_ASSERT(split(got) == want);
+        RC_ASSERT(split_replies(got) == want);
         break;
       }
       case 2: s.in.adc[*rc::gen::inRange<std::size_t>(0, 3)] = *rc::gen::element<std::uint16_t>(0, 100, 499, 500, 512, 524, 525, 900, 1023); break;
@@ -105,7 +89,7 @@ RC_GTEST_PROP(Unit3ModelProps, ThePcSeesWhatTheModelSays, ()) {
         s.unit->press(static_cast<ap::unit3_menu::Button>(b));
         want = m.press(b);
         got = s.take();
-        RC_ASSERT(split(got) == want);
+        RC_ASSERT(split_replies(got) == want);
         break;
       }
       case 5:
@@ -135,7 +119,7 @@ RC_GTEST_PROP(Unit3ModelProps, ThePcSeesWhatTheModelSays, ()) {
           // move, and a report of every axis whose move ended or was cut.
           std::vector<int> reported;
           int e23 = 0;
-          for (const auto& r : split(s.take())) {
+          for (const auto& r : split_replies(s.take())) {
             if (r == "E23;") {
               ++e23;
               continue;

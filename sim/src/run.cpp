@@ -19,13 +19,7 @@ namespace sc = ap::sim::scenario;
 RunResult run_scenario(const sc::Scenario& s, const RunOptions& opt) {
   dds::use_loopback_config(false);
   std::optional<dds::DomainLease> lease;
-  std::uint32_t domain = 0;
-  if (opt.domain) {
-    domain = *opt.domain;
-  } else {
-    lease.emplace(dds::DomainLease::claim(1, dds::kMaxDomainId));
-    domain = lease->id();
-  }
+  const std::uint32_t domain = dds::fixed_or_claimed(opt.domain, lease);
   std::string out_dir;
   if (!opt.out_root.empty()) out_dir = opt.out_root + "/" + s.name;
   std::atomic<bool> stop{false};

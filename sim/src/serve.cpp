@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sim/run.hpp"
+#include "sim/serve_loop.hpp"
 
 namespace ap::sim {
 
@@ -48,34 +49,14 @@ int serve_board(const dds::ParticipantPtr& participant, const BoardOptions& opt,
                 const std::atomic<bool>* stop) {
   dds::BoardEndpoint ep(participant, opt.id);
   SimBoard board(opt);
-  for (;;) {
-    if (stop != nullptr && stop->load()) return 1;
-    auto cmd = ep.take_command(std::chrono::milliseconds(stop != nullptr ? 200 : idle_timeout.count()));
-    if (!cmd) {
-      if (stop != nullptr) {
-        idle_timeout -= std::chrono::milliseconds(200);
-        if (idle_timeout.count() > 0) continue;
-      }
-      return 2;
-    }
-    if ((cmd->flags & dds::kFlagShutdown) != 0U) {
-      board.finish();
-      ep.echo(*cmd, {}, telemetry_of(board, opt.id));
-      return 0;
-    }
-    if ((cmd->flags & kFlagEnv) != 0U) {
-      std::string reply = board.env(std::string(cmd->bytes.begin(), cmd->bytes.end()));
-      if (reply.size() > dds::kFrameMax) reply.resize(dds::kFrameMax);
-      const std::vector<std::uint8_t> bytes(reply.begin(), reply.end());
-      ep.echo(*cmd, bytes, telemetry_of(board, opt.id));
-      continue;
-    }
-    board.advance_to(static_cast<std::int64_t>(cmd->vtime_us));
-    if (!cmd->bytes.empty()) board.rx(cmd->bytes);
-    const std::vector<std::uint8_t> tx = board.take_tx(dds::kFrameMax);
-    const dds::Telemetry t = telemetry_of(board, opt.id);
-    ep.echo(*cmd, tx, t);
-  }
+  return serve_loop(
+      ep, board, idle_timeout, stop,
+      [&](const dds::CommandSample& cmd) {
+        board.advance_to(static_cast<std::int64_t>(cmd.vtime_us));
+        if (!cmd.bytes.empty()) board.rx(cmd.bytes);
+        return board.take_tx(dds::kFrameMax);
+      },
+      [&] { return telemetry_of(board, opt.id); });
 }
 
 }  // namespace ap::sim

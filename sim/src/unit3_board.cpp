@@ -28,15 +28,6 @@ std::optional<unit3_menu::Button> button_of(const std::string& w) {
   return std::nullopt;
 }
 
-const char* source_name(unit3_board::Source s) {
-  switch (s) {
-    case unit3_board::Source::Idle: return "idle";
-    case unit3_board::Source::Pc: return "pc";
-    case unit3_board::Source::Joystick: return "joystick";
-  }
-  return "?";
-}
-
 }  // namespace
 
 Board::Board(const BoardOptions& opt) : opt_(opt) {
@@ -106,7 +97,7 @@ std::string Board::state_of(std::size_t a) const {
   std::ostringstream r;
   r << "pulses=" << pulses_[a] << " counter=" << st.counter << " entry=" << static_cast<unsigned>(st.entry)
     << " dir=" << static_cast<int>(o.dir) << " running=" << (o.running ? 1 : 0) << " remaining=" << st.remaining
-    << " mode=" << static_cast<unsigned>(st.mode) << " source=" << source_name(st.source);
+    << " mode=" << static_cast<unsigned>(st.mode) << " source=" << unit3_board::source_key(st.source);
   return r.str();
 }
 
@@ -178,32 +169,14 @@ int serve_board(const dds::ParticipantPtr& participant, const BoardOptions& opt,
   dds::BoardEndpoint ep(participant, opt.id);
   Board board(opt);
   const dds::Telemetry none{};  // the XY telemetry type: not this unit's (docs/unit3-sim.md)
-  for (;;) {
-    if (stop != nullptr && stop->load()) return 1;
-    auto cmd = ep.take_command(std::chrono::milliseconds(stop != nullptr ? 200 : idle_timeout.count()));
-    if (!cmd) {
-      if (stop != nullptr) {
-        idle_timeout -= std::chrono::milliseconds(200);
-        if (idle_timeout.count() > 0) continue;
-      }
-      return 2;
-    }
-    if ((cmd->flags & dds::kFlagShutdown) != 0U) {
-      board.finish();
-      ep.echo(*cmd, {}, none);
-      return 0;
-    }
-    if ((cmd->flags & kFlagEnv) != 0U) {
-      std::string reply = board.env(std::string(cmd->bytes.begin(), cmd->bytes.end()));
-      if (reply.size() > dds::kFrameMax) reply.resize(dds::kFrameMax);
-      const std::vector<std::uint8_t> bytes(reply.begin(), reply.end());
-      ep.echo(*cmd, bytes, none);
-      continue;
-    }
-    board.advance_to(static_cast<std::int64_t>(cmd->vtime_us));
-    if (!cmd->bytes.empty()) board.rx(cmd->bytes, static_cast<std::int64_t>(cmd->vtime_us));
-    ep.echo(*cmd, board.take_tx(dds::kFrameMax), none);
-  }
+  return serve_loop(
+      ep, board, idle_timeout, stop,
+      [&](const dds::CommandSample& cmd) {
+        board.advance_to(static_cast<std::int64_t>(cmd.vtime_us));
+        if (!cmd.bytes.empty()) board.rx(cmd.bytes, static_cast<std::int64_t>(cmd.vtime_us));
+        return board.take_tx(dds::kFrameMax);
+      },
+      [&] { return none; });
 }
 
 }  // namespace ap::sim::unit3

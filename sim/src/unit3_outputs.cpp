@@ -18,15 +18,6 @@ const char* const kAxisLower[kAxes] = {"x", "y", "z"};
 const char* const kAxisUpper[kAxes] = {"X", "Y", "Z"};
 const char* const kColour[kAxes] = {"#d62728", "#1f77b4", "#2ca02c"};
 
-const char* source_name(unit3_board::Source s) {
-  switch (s) {
-    case unit3_board::Source::Idle: return "idle";
-    case unit3_board::Source::Pc: return "pc";
-    case unit3_board::Source::Joystick: return "joystick";
-  }
-  return "?";
-}
-
 std::ofstream open(const std::string& path) {
   std::ofstream f(path);
   if (!f) throw std::runtime_error("cannot write " + path);
@@ -41,7 +32,7 @@ void write_trace_csv(const std::vector<TickSample>& samples, const std::string& 
   for (const TickSample& s : samples) {
     for (std::size_t a = 0; a < kAxes; ++a) {
       const AxisSample& x = s.axis[a];
-      f << s.t_ms << ',' << kAxisLower[a] << ',' << source_name(x.source) << ',' << static_cast<unsigned>(x.entry) << ','
+      f << s.t_ms << ',' << kAxisLower[a] << ',' << unit3_board::source_key(x.source) << ',' << static_cast<unsigned>(x.entry) << ','
         << static_cast<int>(x.dir) << ',' << static_cast<unsigned>(x.mode) << ',' << x.counter << ',' << x.remaining << ','
         << static_cast<unsigned>(x.pulses) << ',' << (x.running ? 1 : 0) << ',' << x.pulse_at << '\n';
     }

@@ -315,13 +315,7 @@ RunResult run_scenario(const Scenario& s, const RunOptions& opt) {
   if (opt.step_us <= 0) throw std::runtime_error("unit3 run: the lockstep period must be positive");
   dds::use_loopback_config(false);
   std::optional<dds::DomainLease> lease;
-  std::uint32_t domain = 0;
-  if (opt.domain) {
-    domain = *opt.domain;
-  } else {
-    lease.emplace(dds::DomainLease::claim(1, dds::kMaxDomainId));
-    domain = lease->id();
-  }
+  const std::uint32_t domain = dds::fixed_or_claimed(opt.domain, lease);
   const std::string out_dir = opt.out_root.empty() ? std::string() : opt.out_root + "/" + s.name;
   if (!out_dir.empty() && !opt.join) {
     // A stale trace of an earlier run must not pass for this one's.

@@ -33,6 +33,15 @@ const char* refusal_key(std::uint8_t code) {
   }
 }
 
+const char* source_key(Source s) {
+  switch (s) {
+    case Source::Idle: return "idle";
+    case Source::Pc: return "pc";
+    case Source::Joystick: return "joystick";
+  }
+  return "?";
+}
+
 Unit::Unit(std::span<std::uint8_t, unit3_settings::kImageSize> eeprom) : eeprom_(eeprom) {
   const auto l = unit3_settings::load(eeprom_);
   loaded_ = l.status;

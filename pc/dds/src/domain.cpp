@@ -42,4 +42,10 @@ DomainLease::~DomainLease() {
   }
 }
 
+std::uint32_t fixed_or_claimed(std::optional<std::uint32_t> fixed, std::optional<DomainLease>& lease) {
+  if (fixed) return *fixed;
+  lease.emplace(DomainLease::claim(1, kMaxDomainId));
+  return lease->id();
+}
+
 }  // namespace ap::dds

@@ -20,15 +20,13 @@
 #include <vector>
 
 #include "pc/dds/bus.hpp"
+#include "sim/serve_loop.hpp"
 #include "sim/scenario.hpp"
 #include "pc/client/client.hpp"
 #include "sim/board.hpp"
 
 namespace ap::sim {
 
-// Bus Command flag of a harness ("environment") command: bytes are a text line for
-// SimBoard::env(), the echo's bytes its text reply; the board's clock does not move.
-inline constexpr std::uint32_t kFlagEnv = 0x100;
 
 struct RunOptions {
   std::string out_root = "out/sim";   // outputs of board 0 under out_root/NAME/ (empty: none)

@@ -25,15 +25,12 @@
 
 #include "core/unit3_board/unit.hpp"
 #include "pc/dds/bus.hpp"
+#include "sim/serve_loop.hpp"
 #include "sim/unit3_safety.hpp"
 #include "sim/unit3_scenario.hpp"
 
 namespace ap::sim::unit3 {
 
-// Bus Command flag of an environment command: the bytes are a text line for Board::env(), the
-// echo's bytes its text reply; the board's clock does not move. The value is the XY run's
-// (sim/run.hpp), so a bus capture reads the same for both profiles.
-inline constexpr std::uint32_t kFlagEnv = 0x100;
 
 // The UART at 19200 8N1 [T §2.1]: 10 bit times per byte, 1920 bytes/s. Line time is counted in
 // 1/12 us (12 MHz divides both 1 us and one bit time, 625 units), so byte k of a burst ends

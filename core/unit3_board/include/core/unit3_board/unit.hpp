@@ -56,6 +56,7 @@ struct Inputs {
 };
 
 enum class Source : std::uint8_t { Idle, Pc, Joystick };
+const char* source_key(Source s);  // idle, pc, joystick
 
 struct AxisState {
   Source source = Source::Idle;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 namespace ap::dds {
 
@@ -27,5 +28,9 @@ class DomainLease {
   std::uint32_t id_;
   int fd_;
 };
+
+// The domain a run uses: `fixed` when given, else a free one claimed into `lease`, which holds
+// it for as long as the caller keeps `lease`.
+std::uint32_t fixed_or_claimed(std::optional<std::uint32_t> fixed, std::optional<DomainLease>& lease);
 
 }  // namespace ap::dds
