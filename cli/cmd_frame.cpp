@@ -27,6 +27,12 @@ void add_frame(CLI::App& app) {
   add_profile_option(decode, decode_profile);
   decode->final_callback([] {
     const Profile* p = find_profile(decode_profile);
+    if (p->decode_frames == nullptr || p->decode_stream == nullptr) {
+      std::fprintf(stderr, "axisproof frame decode: profile %s has no wire protocol (%.*s)\n", decode_profile.c_str(),
+                   static_cast<int>(p->seed.size()), p->seed.data());
+      exit_status() = 2;
+      return;
+    }
     bool ok = true;
     if (frames.empty()) {
       const std::string data((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());

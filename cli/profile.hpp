@@ -44,7 +44,7 @@ struct Profile {
   // Its wire codec (frame decode/encode/doc). decode_* print one line per frame or problem
   // and return true when everything decoded. A part a profile has not brought yet is
   // nullptr (or empty); the commands that need it say so and fail.
-  bool (*decode_frames)(const std::vector<std::string>& frames);
+  bool (*decode_frames)(const std::vector<std::string>& frames);  // nullptr: no wire protocol
   bool (*decode_stream)(const std::string& capture);
   int (*encode)(const std::vector<std::string>& tokens);  // nullptr: the profile has none
   void (*doc)();                                          // nullptr: the profile has none
@@ -84,5 +84,6 @@ void print_profiles();
 // Defined by each profile's adapter file (profile_<name>.cpp).
 Profile xy_profile();
 Profile unit3_profile();
+Profile hc08_profile();
 
 }  // namespace ap::cli

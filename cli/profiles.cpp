@@ -7,7 +7,7 @@
 namespace ap::cli {
 
 const std::vector<Profile>& profiles() {
-  static const std::vector<Profile> all = {xy_profile(), unit3_profile()};
+  static const std::vector<Profile> all = {xy_profile(), unit3_profile(), hc08_profile()};
   return all;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 // One registration function per module; all_obligations() calls them in this order.
+#include "core/hc08_drive/drive.hpp"
 #include "models/smt/obligation.hpp"
 
 namespace ap::model::smt {
@@ -11,5 +12,11 @@ void add_storage_obligations(ObligationList& out);  // storage_obligations.cpp
 
 // The unit3 profile's obligations (docs/unit3.md), apart from the XY platform's above.
 ObligationList unit3_obligations();  // unit3_obligations.cpp
+// The hc08 profile's (docs/hc08.md), and its ramp arithmetic as terms (the conformance test
+// evaluates them against the core).
+ObligationList hc08_obligations();  // hc08_obligations.cpp
+z3::expr hc08_ramp_step_term(z3::context& c, const z3::expr& tmod, const z3::expr& target, const z3::expr& stopping,
+                             ap::hc08_drive::Drive d);
+z3::expr hc08_steps_to_start(z3::context& c, const z3::expr& tmod, ap::hc08_drive::Drive d);
 
 }  // namespace ap::model::smt
