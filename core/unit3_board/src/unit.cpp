@@ -10,15 +10,11 @@ namespace {
 namespace r = unit3_ramp;
 namespace w = unit3_wire;
 
+// A refused plan: not a whole number of pulses, or past the counter's range. plan_move's other
+// errors cannot come from here: the wire's 15 digits keep a count within TooFar's bound and the
+// settings hold modes 0..5 only (unit3_settings), so they are reported as the range.
 std::uint8_t refusal_code(unit3_axis::Error e) {
-  switch (e) {
-    case unit3_axis::Error::NotMultiple: return static_cast<std::uint8_t>(Refusal::NotMultiple);
-    case unit3_axis::Error::CounterRange:
-    case unit3_axis::Error::TooFar:  // the wire's 15 digits keep a count below this bound
-    case unit3_axis::Error::BadMode:  // settings hold modes 0..5 only (unit3_settings)
-    case unit3_axis::Error::None: break;
-  }
-  return static_cast<std::uint8_t>(Refusal::CounterRange);
+  return static_cast<std::uint8_t>(e == unit3_axis::Error::NotMultiple ? Refusal::NotMultiple : Refusal::CounterRange);
 }
 
 }  // namespace

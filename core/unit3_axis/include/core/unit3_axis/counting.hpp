@@ -70,7 +70,8 @@ constexpr Plan plan_move(std::int64_t counter, std::int8_t dir, std::uint64_t co
 }
 
 // Position of a counter in µm (eq. 5: count / 6400 * pitch), rounded to the nearest µm, half
-// away from zero. Split so that no product exceeds 2^63: |count / 6400| <= 1.6e14.
+// away from zero. Split so that no product exceeds 2^63: |count / 6400| <= 1.6e14. A thread
+// index past the table (the settings never hold one) reads as M2, never past the table.
 constexpr std::int64_t position_um(std::int64_t counter, std::uint8_t thread) {
   const std::int64_t pitch = kThreadTable[thread < kThreads ? thread : 0].pitch_um;
   const std::int64_t revs = counter / static_cast<std::int64_t>(kCountsPerRev);

@@ -89,6 +89,7 @@ class Unit {
   void tick(const Inputs& in);
   std::size_t take_tx(std::span<std::uint8_t> out) { return tx_.take(out); }
 
+  // An index past the three axes reads axis X: never past the arrays.
   const AxisState& axis(std::size_t a) const { return axes_[a < kAxes ? a : 0]; }
   const AxisOut& out(std::size_t a) const { return out_[a < kAxes ? a : 0]; }
   const unit3_settings::Settings& settings() const { return settings_; }
