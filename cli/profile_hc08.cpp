@@ -1,11 +1,58 @@
 // The HC08 single-motor unit (seed 002) as a profile (docs/profiles.md, docs/hc08.md). It has no
 // link to a PC (its only input is the keypad), so it brings no wire codec: `frame` says so. Its
 // end-to-end runs drive the keys over the bus and read the coil lines.
+#include <cstdio>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
 #include "cli.hpp"
 #include "models/smt/modules.hpp"
 #include "profile.hpp"
+#include "sim/hc08.hpp"
 
 namespace ap::cli {
+
+namespace {
+
+// axisproof sim board --profile hc08: boards for `sim run --profile hc08 --join --domain N`
+// (docs/hc08-sim.md). Each is the unit at power-up; the keys reach it over the bus.
+int sim_board(const SimBoardArgs& a) {
+  return host_boards(a, "hc08", [](const dds::ParticipantPtr& pp, std::uint32_t id, const std::string& out, std::chrono::seconds idle) {
+    ap::sim::hc08::BoardOptions o;
+    o.id = id;
+    o.out_dir = out;
+    return ap::sim::hc08::serve_board(pp, o, idle);
+  });
+}
+
+// axisproof sim run --profile hc08 scenarios/hc08/NAME.scn: exit 0 pass, 1 fail, 2 error.
+int sim_run(const SimRunArgs& a) {
+  namespace h = ap::sim::hc08;
+  try {
+    const h::Scenario s = h::parse_file(a.scenario);
+    if (a.realtime) throw std::runtime_error("--realtime: the hc08 run has no realtime mode");
+    h::RunOptions o;
+    o.join = a.join;
+    if (a.join && a.domain < 0) throw std::runtime_error("--join needs --domain");
+    if (a.domain >= 0) o.domain = static_cast<std::uint32_t>(a.domain);
+    // The shared default root out/sim holds the XY runs; this profile's go to out/sim/hc08/NAME
+    // (the gate shows a profile's plots from there). A root given with --out is used as given.
+    o.out_root = a.out_root == "out/sim" ? std::string("out/sim/hc08") : a.out_root;
+    o.step_us = static_cast<std::int64_t>(a.step_ms) * 1000;
+    if (o.step_us <= 0) throw std::runtime_error("--step-ms must be positive");
+    o.log = &std::cerr;
+    const h::RunResult r = h::run_scenario(s, o);
+    std::cout << h::format_report(s, r);
+    if (!r.out_dir.empty()) std::cout << "  outputs: " << r.out_dir << "/{trace.csv,waveforms.vcd,plots.svg,report.txt}\n";
+    return r.pass ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "axisproof sim run: %s\n", e.what());
+    return 2;
+  }
+}
+
+}  // namespace
 
 Profile hc08_profile() {
   return Profile{
@@ -18,8 +65,8 @@ Profile hc08_profile() {
       .encode = nullptr,
       .doc = nullptr,
       .scenarios = "scenarios/hc08",
-      .sim_run = nullptr,
-      .sim_board = nullptr,
+      .sim_run = &sim_run,
+      .sim_board = &sim_board,
       .obligations = &model::smt::hc08_obligations,
       .coverage_paths = {"core/hc08_drive", "core/hc08_timer", "core/hc08_motor", "core/hc08_menu", "core/hc08_board"},
       // Cross-built for the Cortex-M4 and held to the HC08's budget (docs/hc08.md "MCU").

@@ -20,7 +20,7 @@ std::uint32_t min_period(Drive d) { return d == Drive::Full ? kBus / 800 : kBus 
 
 struct Step {
   std::uint32_t period;  // ticks before this step
-  int dir;
+  int dir;  // the way this step turned
 };
 
 // Runs to rest (or `limit` steps), calling `at(i)` before each step.
@@ -30,8 +30,9 @@ std::vector<Step> run(mo::Motor& m, At at, int limit = 200000) {
   for (int i = 0; i < limit && m.running(); ++i) {
     at(i);
     const std::uint32_t p = m.period_ticks();
+    const int d = m.dir();  // this step turns the way the motor faces before it
     m.on_match();
-    v.push_back({p, m.dir()});
+    v.push_back({p, d});
   }
   return v;
 }
@@ -134,7 +135,7 @@ RC_GTEST_PROP(Hc08MotorProps, ModeAStopAndReversalDecelerateFirst, ()) {
       5000);
   RC_ASSERT(!m.running());
   for (std::size_t i = 1; i < steps.size(); ++i) {
-    if (steps[i].dir != steps[i - 1].dir) RC_ASSERT(steps[i - 1].period >= start_period(d) || steps[i].period >= start_period(d));
+    if (steps[i].dir != steps[i - 1].dir) RC_ASSERT(steps[i - 1].period >= start_period(d) && steps[i].period >= start_period(d));
   }
   RC_ASSERT(steps.back().period >= start_period(d) || kBus / static_cast<double>(steps.back().period) <= speed / 100.0 * (d == Drive::Full ? 40 : 80) * 1.001);
 }

@@ -102,8 +102,12 @@ bool Motor::on_match() {
       return true;
     }
     if (reverse_pending_) {
+      // Reversed at or below the start frequency. The first step the other way is a start
+      // from rest: it keeps this period (at or below the start frequency), and the ramp climbs
+      // again from the step after it.
       right_ = !right_;
       reverse_pending_ = false;
+      return true;
     }
   }
   const std::uint16_t start_tmod = t::tmod_at_hz(t::start_hz(seq_.drive()));
