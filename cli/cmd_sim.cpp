@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,6 +28,17 @@ std::string scenario_path(const std::string& arg, const Profile& p) {
 }
 
 }  // namespace
+
+int sim_run_main(const std::function<SimRunVerdict()>& run) {
+  try {
+    const SimRunVerdict v = run();
+    if (!v.out_dir.empty()) std::cout << "  outputs: " << v.out_dir << "/{trace.csv,waveforms.vcd,plots.svg,report.txt}\n";
+    return v.pass ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "axisproof sim run: %s\n", e.what());
+    return 2;
+  }
+}
 
 int host_boards(const SimBoardArgs& a, std::string_view label, const BoardServer& serve) {
   try {

@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <iostream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -71,6 +73,26 @@ struct Profile {
 using BoardServer = std::function<int(const dds::ParticipantPtr&, std::uint32_t id, const std::string& out,
                                       std::chrono::seconds idle)>;
 int host_boards(const SimBoardArgs& a, std::string_view label, const BoardServer& serve);
+
+// `sim run` for any profile: `run` parses a.scenario, runs it and prints its report, and
+// returns its verdict; this prints where the outputs went and gives the exit code (0 pass,
+// 1 fail, 2 error: anything thrown, printed as "axisproof sim run: WHAT").
+struct SimRunVerdict {
+  bool pass = false;
+  std::string out_dir;  // empty: no outputs written
+};
+int sim_run_main(const std::function<SimRunVerdict()>& run);
+
+// The run options every profile takes alike from `sim run`'s arguments: --join (which needs
+// --domain), --domain, --step-ms (each profile checks the period against its own rule), the log.
+template <class RunOptions>
+void set_run_options(const SimRunArgs& a, RunOptions& o) {
+  o.join = a.join;
+  if (a.join && a.domain < 0) throw std::runtime_error("--join needs --domain");
+  if (a.domain >= 0) o.domain = static_cast<std::uint32_t>(a.domain);
+  o.step_us = static_cast<std::int64_t>(a.step_ms) * 1000;
+  o.log = &std::cerr;
+}
 
 const std::vector<Profile>& profiles();
 // nullptr for an unknown name (never after add_profile_option accepted it).

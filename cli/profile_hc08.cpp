@@ -1,7 +1,6 @@
 // The HC08 single-motor unit (seed 002) as a profile (docs/profiles.md, docs/hc08.md). It has no
 // link to a PC (its only input is the keypad), so it brings no wire codec: `frame` says so. Its
 // end-to-end runs drive the keys over the bus and read the coil lines.
-#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -29,27 +28,19 @@ int sim_board(const SimBoardArgs& a) {
 // axisproof sim run --profile hc08 scenarios/hc08/NAME.scn: exit 0 pass, 1 fail, 2 error.
 int sim_run(const SimRunArgs& a) {
   namespace h = ap::sim::hc08;
-  try {
+  return sim_run_main([&]() -> SimRunVerdict {
     const h::Scenario s = h::parse_file(a.scenario);
     if (a.realtime) throw std::runtime_error("--realtime: the hc08 run has no realtime mode");
     h::RunOptions o;
-    o.join = a.join;
-    if (a.join && a.domain < 0) throw std::runtime_error("--join needs --domain");
-    if (a.domain >= 0) o.domain = static_cast<std::uint32_t>(a.domain);
+    set_run_options(a, o);
     // The shared default root out/sim holds the XY runs; this profile's go to out/sim/hc08/NAME
     // (the gate shows a profile's plots from there). A root given with --out is used as given.
     o.out_root = a.out_root == "out/sim" ? std::string("out/sim/hc08") : a.out_root;
-    o.step_us = static_cast<std::int64_t>(a.step_ms) * 1000;
     if (o.step_us <= 0) throw std::runtime_error("--step-ms must be positive");
-    o.log = &std::cerr;
     const h::RunResult r = h::run_scenario(s, o);
     std::cout << h::format_report(s, r);
-    if (!r.out_dir.empty()) std::cout << "  outputs: " << r.out_dir << "/{trace.csv,waveforms.vcd,plots.svg,report.txt}\n";
-    return r.pass ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "axisproof sim run: %s\n", e.what());
-    return 2;
-  }
+    return {r.pass, r.out_dir};
+  });
 }
 
 }  // namespace

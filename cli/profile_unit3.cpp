@@ -115,28 +115,20 @@ int sim_board(const SimBoardArgs& a) {
 // axisproof sim run --profile unit3 scenarios/unit3/NAME.scn: exit 0 pass, 1 fail, 2 error.
 int sim_run(const SimRunArgs& a) {
   namespace u3 = ap::sim::unit3;
-  try {
+  return sim_run_main([&]() -> SimRunVerdict {
     const u3::Scenario s = u3::parse_file(a.scenario);
     if (a.realtime) throw std::runtime_error("--realtime: the unit3 run has no realtime mode");
     u3::RunOptions o;
-    o.join = a.join;
-    if (a.join && a.domain < 0) throw std::runtime_error("--join needs --domain");
+    set_run_options(a, o);
     if (a.join && s.eeprom != u3::Eeprom::Default) throw std::runtime_error("--join: a joined board starts from the default EEPROM");
-    if (a.domain >= 0) o.domain = static_cast<std::uint32_t>(a.domain);
     // The shared default root out/sim holds the XY runs; this profile's go to
     // out/sim/unit3/NAME. A root given with --out is used as given (ROOT/NAME).
     o.out_root = a.out_root == "out/sim" ? std::string("out/sim/unit3") : a.out_root;
-    o.step_us = static_cast<std::int64_t>(a.step_ms) * 1000;
     if (o.step_us <= 0) throw std::runtime_error("--step-ms must be positive");
-    o.log = &std::cerr;
     const u3::RunResult r = u3::run_scenario(s, o);
     std::cout << u3::format_report(s, r);
-    if (!r.out_dir.empty()) std::cout << "  outputs: " << r.out_dir << "/{trace.csv,waveforms.vcd,plots.svg,report.txt}\n";
-    return r.pass ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "axisproof sim run: %s\n", e.what());
-    return 2;
-  }
+    return {r.pass, r.out_dir};
+  });
 }
 
 }  // namespace

@@ -168,25 +168,17 @@ int sim_board(const SimBoardArgs& a) {
 }
 
 int sim_run(const SimRunArgs& a) {
-  try {
+  return sim_run_main([&]() -> SimRunVerdict {
     sim::scenario::Scenario s = sim::scenario::parse_file(a.scenario);
     sim::RunOptions o;
     o.realtime = a.realtime || s.timing == sim::scenario::Timing::realtime;
-    o.join = a.join;
-    if (a.join && a.domain < 0) throw std::runtime_error("--join needs --domain");
-    if (a.domain >= 0) o.domain = static_cast<std::uint32_t>(a.domain);
+    set_run_options(a, o);
     o.out_root = a.out_root;
-    o.step_us = static_cast<std::int64_t>(a.step_ms) * 1000;
     if (o.step_us <= 0 || s.period_us % o.step_us != 0) throw std::runtime_error("--step-ms must divide the command period");
-    o.log = &std::cerr;
     const sim::RunResult r = sim::run_scenario(s, o);
     std::cout << sim::format_report(s, r);
-    if (!r.out_dir.empty()) std::cout << "  outputs: " << r.out_dir << "/{trace.csv,waveforms.vcd,plots.svg,report.txt}\n";
-    return r.pass ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "axisproof sim run: %s\n", e.what());
-    return 2;
-  }
+    return {r.pass, r.out_dir};
+  });
 }
 
 }  // namespace

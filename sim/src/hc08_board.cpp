@@ -214,36 +214,19 @@ std::string Board::env(const std::string& line) {
       << " dropped=" << unit_.queue().dropped() << " violations=" << checker_.violations().size();
     return o.str();
   }
-  if (verb == "violation") {
-    if (!digits(a1, 9)) return "error violation INDEX";
-    const std::size_t i = std::stoul(a1);
-    if (i >= checker_.violations().size()) return "error no violation " + a1;
-    return checker_.violations()[i];
-  }
+  if (verb == "violation") return violation_reply(checker_.violations(), a1);
   return "error unknown environment command '" + verb + "'";
 }
 
-void Board::finish() {
-  if (opt_.out_dir.empty()) return;
-  std::filesystem::create_directories(opt_.out_dir);
-  write_trace_csv(rows_, opt_.out_dir + "/trace.csv");
-  write_vcd(rows_, opt_.out_dir + "/waveforms.vcd");
-  write_svg(rows_, std::filesystem::path(opt_.out_dir).filename().string(), opt_.out_dir + "/plots.svg");
-}
+void Board::finish() { write_board_outputs(opt_.out_dir, rows_); }
 
 int serve_board(const dds::ParticipantPtr& participant, const BoardOptions& opt, std::chrono::milliseconds idle_timeout,
                 const std::atomic<bool>* stop) {
-  dds::BoardEndpoint ep(participant, opt.id);
-  Board board(opt);
-  const dds::Telemetry none{};  // the XY telemetry type: not this unit's (docs/hc08-sim.md)
-  return serve_loop(
-      ep, board, idle_timeout, stop,
-      [&](const dds::CommandSample& cmd) {
-        // No link to a PC: a plain command only moves the clock; its echo carries no bytes.
-        board.advance_to(static_cast<std::int64_t>(cmd.vtime_us));
-        return std::vector<std::uint8_t>{};
-      },
-      [&] { return none; });
+  return serve_unit_board<Board>(participant, opt, idle_timeout, stop, [](Board& board, const dds::CommandSample& cmd) {
+    // No link to a PC: a plain command only moves the clock; its echo carries no bytes.
+    board.advance_to(static_cast<std::int64_t>(cmd.vtime_us));
+    return std::vector<std::uint8_t>{};
+  });
 }
 
 }  // namespace ap::sim::hc08

@@ -12,38 +12,14 @@
 
 #include "pc/dds/domain.hpp"
 #include "sim/hc08.hpp"
-#include "sim/serve_loop.hpp"
+#include "sim/lockstep.hpp"
+#include "text.hpp"
 
 namespace ap::sim::hc08 {
 
 namespace {
 
-std::string tstr(std::int64_t us) {
-  std::ostringstream o;
-  o << static_cast<double>(us) / 1e6 << " s";
-  return o.str();
-}
-
-std::span<const std::uint8_t> as_bytes(const std::string& s) {
-  return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
-}
-
 using Fields = std::map<std::string, std::int64_t>;
-
-// "min=3 max=7 ..." (Board::env "range", "summary").
-Fields parse_fields(const std::string& text) {
-  Fields f;
-  std::istringstream in(text);
-  std::string kv;
-  while (in >> kv) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos) continue;
-    const std::string v = kv.substr(eq + 1);
-    if (v.empty() || v.size() > 18 || v.find_first_not_of("-0123456789") != std::string::npos) continue;
-    f[kv.substr(0, eq)] = std::stoll(v);
-  }
-  return f;
-}
 
 std::optional<std::int64_t> integer_of(const std::string& text) {
   const std::size_t k = !text.empty() && text[0] == '-' ? 1 : 0;
@@ -53,53 +29,38 @@ std::optional<std::int64_t> integer_of(const std::string& text) {
 
 class Tester {
  public:
-  Tester(const Scenario& s, const RunOptions& opt, std::uint32_t domain) : s_(s), opt_(opt) {
-    pp_ = dds::make_participant(domain);
-    ep_ = std::make_unique<dds::PcEndpoint>(pp_, 0);
-  }
+  Tester(const Scenario& s, const RunOptions& opt, std::uint32_t domain) : s_(s), opt_(opt), link_("hc08", domain) {}
 
   RunResult run() {
-    if (!ep_->wait_matched(std::chrono::seconds(20))) throw dds::Error("hc08 run: the board did not appear on the bus within 20 s");
+    link_.wait_board();
     const auto wall0 = std::chrono::steady_clock::now();
     for (const std::int64_t t : timeline()) {
-      ep_->step({}, static_cast<std::uint64_t>(t));
-      ++r_.bus_round_trips;
+      link_.step({}, t);
       for (const Action& a : s_.actions) {
         if (a.t_us == t) act(a);
       }
       read(t);
     }
     // The board's own verdict: its safety checks and its key queue.
-    const Fields sum = parse_fields(env("summary", s_.duration_us));
+    const Fields sum = env_fields(env("summary", s_.duration_us));
     const auto field = [&](const char* k) { return sum.count(k) != 0 ? sum.at(k) : -1; };
     r_.events = static_cast<std::uint64_t>(std::max<std::int64_t>(field("events"), 0));
     r_.steps = static_cast<std::uint64_t>(std::max<std::int64_t>(field("steps"), 0));
     r_.presses = static_cast<std::uint64_t>(std::max<std::int64_t>(field("presses"), 0));
     r_.dropped = static_cast<std::uint64_t>(std::max<std::int64_t>(field("dropped"), 0));
-    const std::int64_t violations = field("violations");
-    if (violations < 0) r_.failures.push_back("the board gave no summary");
-    for (std::int64_t i = 0; i < std::min<std::int64_t>(violations, 50); ++i) {
-      r_.failures.push_back("safety: " + env("violation " + std::to_string(i), s_.duration_us));
-    }
-    if (violations > 50) r_.failures.push_back("safety: " + std::to_string(violations - 50) + " more violations");
+    link_.safety_failures(field("violations"), s_.duration_us, r_.failures);
     if (r_.dropped > 0) r_.failures.push_back("the unit's queue dropped " + std::to_string(r_.dropped) + " keys");
     if (field("t_us") != s_.duration_us) {
       r_.failures.push_back("the board ran to " + std::to_string(field("t_us")) + " us, not " + std::to_string(s_.duration_us));
     }
     judge();
-    dds::EchoSample ignored = flagged({}, s_.duration_us, dds::kFlagShutdown);
-    (void)ignored;
-    r_.vtime_us = s_.duration_us;
-    r_.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    return std::move(r_);
+    return link_.finish(std::move(r_), s_.duration_us, wall0);
   }
 
  private:
   // Every lockstep period, and every time an action or an expectation names.
   std::vector<std::int64_t> timeline() const {
-    std::set<std::int64_t> t;
-    for (std::int64_t k = opt_.step_us; k < s_.duration_us; k += opt_.step_us) t.insert(k);
-    t.insert(s_.duration_us);
+    std::set<std::int64_t> t = lockstep_times(opt_.step_us, s_.duration_us);
     for (const Action& a : s_.actions) t.insert(a.t_us);
     for (const Expectation& e : s_.expectations) {
       t.insert(e.t_us);
@@ -111,23 +72,7 @@ class Tester {
     return out;
   }
 
-  // A flagged command (environment, shutdown) and its echo; PcEndpoint::step sends unflagged.
-  dds::EchoSample flagged(std::span<const std::uint8_t> bytes, std::int64_t t, std::uint32_t flags) {
-    const std::uint64_t seq = ep_->send(bytes, static_cast<std::uint64_t>(t), flags);
-    ++r_.bus_round_trips;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    for (;;) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-      auto e = ep_->take_echo(std::max(left, std::chrono::milliseconds(0)));
-      if (!e) throw dds::Error("hc08 run: the board did not answer bus command " + std::to_string(seq));
-      if (e->cmd_seq == seq) return std::move(*e);
-    }
-  }
-
-  std::string env(const std::string& text, std::int64_t t) {
-    const dds::EchoSample e = flagged(as_bytes(text), t, kFlagEnv);
-    return {e.bytes.begin(), e.bytes.end()};
-  }
+  std::string env(const std::string& text, std::int64_t t) { return link_.env(text, t); }
 
   void act(const Action& a) {
     const std::string cmd = "press " + std::to_string(a.code) + " " + std::to_string(a.hold_ms) + (a.bounce ? " 1" : " 0");
@@ -146,7 +91,7 @@ class Tester {
         if (const auto v = integer_of(env(std::string("get ") + q, t))) values_[{t, e.quantity}] = *v;
       }
       if (e.kind == ExpectKind::Throughout && e.t_us == t) {
-        ranges_[i] = parse_fields(env(std::string("range ") + q + " " + std::to_string(e.t0_us) + " " + std::to_string(e.value), t));
+        ranges_[i] = env_fields(env(std::string("range ") + q + " " + std::to_string(e.t0_us) + " " + std::to_string(e.value), t));
       }
     }
   }
@@ -202,8 +147,7 @@ class Tester {
 
   const Scenario& s_;
   const RunOptions& opt_;
-  dds::ParticipantPtr pp_;
-  std::unique_ptr<dds::PcEndpoint> ep_;
+  LockstepLink link_;
   RunResult r_;
   std::map<std::pair<std::int64_t, Quantity>, std::int64_t> values_;
   std::map<std::size_t, Fields> ranges_;
@@ -212,50 +156,15 @@ class Tester {
 }  // namespace
 
 RunResult run_scenario(const Scenario& s, const RunOptions& opt) {
-  if (opt.step_us <= 0) throw std::runtime_error("hc08 run: the lockstep period must be positive");
-  dds::use_loopback_config(false);
-  std::optional<dds::DomainLease> lease;
-  const std::uint32_t domain = dds::fixed_or_claimed(opt.domain, lease);
-  const std::string out_dir = opt.out_root.empty() ? std::string() : opt.out_root + "/" + s.name;
-  if (!out_dir.empty() && !opt.join) {
-    // A stale trace of an earlier run must not pass for this one's.
-    std::filesystem::remove_all(out_dir);
-  }
-  std::atomic<bool> stop{false};
-  std::thread board;
-  int rc = 0;
-  dds::ParticipantPtr board_pp;
-  if (!opt.join) {
-    board_pp = dds::make_participant(domain);
-    BoardOptions bo;
-    bo.out_dir = out_dir;
-    board = std::thread([&, bo] {
-      try {
-        rc = serve_board(board_pp, bo, std::chrono::seconds(60), &stop);
-      } catch (const std::exception& e) {
-        rc = 3;
-        if (opt.log != nullptr) *opt.log << "hc08 board: " << e.what() << '\n';
-      }
-    });
-  }
-  RunResult r;
-  try {
-    r = Tester(s, opt, domain).run();
-  } catch (...) {
-    stop = true;
-    if (board.joinable()) board.join();
-    throw;
-  }
-  if (board.joinable()) board.join();
-  if (!opt.join && rc != 0) r.failures.push_back("the board did not shut down cleanly (code " + std::to_string(rc) + ")");
-  r.pass = r.failures.empty();
-  r.domain = domain;
-  r.out_dir = opt.join ? std::string() : out_dir;
-  if (!r.out_dir.empty()) {
-    std::filesystem::create_directories(r.out_dir);
-    std::ofstream(r.out_dir + "/report.txt") << format_report(s, r);
-  }
-  return r;
+  return run_lockstep(
+      "hc08", s.name, opt,
+      [&](const dds::ParticipantPtr& pp, const std::string& out_dir, const std::atomic<bool>* stop) {
+        BoardOptions bo;
+        bo.out_dir = out_dir;
+        return serve_board(pp, bo, std::chrono::seconds(60), stop);
+      },
+      [&](std::uint32_t domain) { return Tester(s, opt, domain).run(); },
+      [&](const RunResult& r) { return format_report(s, r); });
 }
 
 std::string format_report(const Scenario& s, const RunResult& r) {

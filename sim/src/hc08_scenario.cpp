@@ -5,37 +5,22 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "core/hc08_board/keypad.hpp"
 
 namespace ap::sim::hc08 {
 
-bool compare(std::int64_t got, Op op, std::int64_t want) {
-  switch (op) {
-    case Op::Eq: return got == want;
-    case Op::Ne: return got != want;
-    case Op::Lt: return got < want;
-    case Op::Le: return got <= want;
-    case Op::Gt: return got > want;
-    case Op::Ge: return got >= want;
-  }
-  return false;
-}
+namespace {
 
-const char* op_text(Op op) {
-  switch (op) {
-    case Op::Eq: return "==";
-    case Op::Ne: return "!=";
-    case Op::Lt: return "<";
-    case Op::Le: return "<=";
-    case Op::Gt: return ">";
-    case Op::Ge: return ">=";
-  }
-  return "?";
-}
+using text::Line;
+
+// The hc08 dialect (docs/hc08-sim.md): a string (the title) escapes only \" and \\, a missing
+// word is named, a time may reach a day, and the report shows the line without its comment.
+const text::Dialect kDialect = {
+    .full_escapes = false, .name_at_end = true, .cut_blank_hash = false, .one_title = true, .time = {15, 86'400'000'000LL}};
+
+}  // namespace
 
 namespace {
 
@@ -80,32 +65,7 @@ std::string format_value(Quantity q, std::int64_t v) {
 }
 
 bool parse_time(const std::string& number, const std::string& unit, std::int64_t& us) {
-  std::int64_t scale = 0;
-  if (unit == "s") scale = 1'000'000;
-  else if (unit == "ms") scale = 1'000;
-  else if (unit == "us") scale = 1;
-  else return false;
-  if (number.empty() || number.size() > 15 || number.find_first_of("0123456789") == std::string::npos) return false;
-  // Exact decimal arithmetic: whole microseconds or an error, never a rounded time.
-  std::int64_t whole = 0, frac = 0, frac_scale = 1;
-  bool dot = false;
-  for (const char c : number) {
-    if (c == '.' && !dot) {
-      dot = true;
-    } else if (std::isdigit(static_cast<unsigned char>(c)) != 0) {
-      if (dot) {
-        frac = frac * 10 + (c - '0');
-        frac_scale *= 10;
-      } else {
-        whole = whole * 10 + (c - '0');
-      }
-    } else {
-      return false;
-    }
-  }
-  if ((frac * scale) % frac_scale != 0) return false;  // finer than 1 us
-  us = whole * scale + frac * scale / frac_scale;
-  return us <= 86'400'000'000LL;  // a day of virtual time: a typo, not a scenario
+  return text::parse_time(number, unit, us, kDialect.time);
 }
 
 bool key_of(const std::string& name, std::uint8_t& code) {
@@ -133,114 +93,6 @@ bool key_of(const std::string& name, std::uint8_t& code) {
 }
 
 namespace {
-
-struct Token {
-  std::string text;
-  bool quoted = false;
-};
-
-class Line {
- public:
-  Line(std::string file, int n, std::vector<Token> t) : file_(std::move(file)), n_(n), t_(std::move(t)) {}
-
-  [[noreturn]] void fail(const std::string& what) const { throw ParseError(file_, n_, what); }
-  bool done() const { return i_ >= t_.size(); }
-  bool peek_is(const char* w) const { return !done() && !t_[i_].quoted && t_[i_].text == w; }
-  std::string word(const char* what) {
-    if (done()) fail(std::string("expected ") + what + " at the end of the line");
-    const Token& t = t_[i_];
-    if (t.quoted) fail(std::string("expected ") + what + ", got a string");
-    ++i_;
-    return t.text;
-  }
-  void expect_word(const char* w) {
-    const std::string got = word(w);
-    if (got != w) fail(std::string("expected '") + w + "', got '" + got + "'");
-  }
-  std::string string(const char* what) {
-    if (done()) fail(std::string("expected ") + what + " at the end of the line");
-    const Token& t = t_[i_];
-    if (!t.quoted) fail(std::string("expected ") + what + " as a \"string\", got '" + t.text + "'");
-    ++i_;
-    return t.text;
-  }
-  // A time: "10 ms", "0.5 s", or written together, "10ms".
-  std::int64_t time() {
-    std::string num = word("a time");
-    std::string unit;
-    const auto split = num.find_first_not_of("0123456789.");
-    if (split != std::string::npos && split > 0) {
-      unit = num.substr(split);
-      num.resize(split);
-    } else {
-      if (done()) fail("time '" + num + "' needs a unit (s, ms, us)");
-      unit = word("a time unit");
-    }
-    std::int64_t us = 0;
-    if (!parse_time(num, unit, us)) fail("bad time '" + num + " " + unit + "' (a number and s, ms or us, whole us)");
-    return us;
-  }
-  Op op() {
-    const std::string w = word("a comparison");
-    if (w == "==") return Op::Eq;
-    if (w == "!=") return Op::Ne;
-    if (w == "<") return Op::Lt;
-    if (w == "<=") return Op::Le;
-    if (w == ">") return Op::Gt;
-    if (w == ">=") return Op::Ge;
-    fail("unknown comparison '" + w + "' (== != < <= > >=)");
-  }
-  void end() const {
-    if (!done()) fail("unexpected '" + t_[i_].text + "' at the end of the line");
-  }
-  int number() const { return n_; }
-
- private:
-  std::string file_;
-  int n_;
-  std::vector<Token> t_;
-  std::size_t i_ = 0;
-};
-
-// Words split on blanks; a "string" with \" and \\; `#` outside a string ends the line.
-std::vector<Token> tokenize(const std::string& s, const std::string& file, int n) {
-  std::vector<Token> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const char c = s[i];
-    if (c == ' ' || c == '\t' || c == '\r') {
-      ++i;
-    } else if (c == '#') {
-      break;
-    } else if (c == '"') {
-      Token t{"", true};
-      ++i;
-      for (;;) {
-        if (i >= s.size()) throw ParseError(file, n, "unterminated string");
-        const char d = s[i++];
-        if (d == '"') break;
-        if (d == '\\') {
-          if (i >= s.size() || (s[i] != '"' && s[i] != '\\')) throw ParseError(file, n, "a string escapes only \\\" and \\\\");
-          t.text += s[i++];
-          continue;
-        }
-        t.text += d;
-      }
-      out.push_back(std::move(t));
-    } else {
-      Token t;
-      while (i < s.size() && s[i] != ' ' && s[i] != '\t' && s[i] != '\r' && s[i] != '#' && s[i] != '"') t.text += s[i++];
-      out.push_back(std::move(t));
-    }
-  }
-  return out;
-}
-
-bool valid_name(const std::string& n) {
-  return !n.empty() && std::all_of(n.begin(), n.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
-  });
-}
 
 Quantity quantity(Line& l) {
   const std::string w = l.word("a quantity");
@@ -383,36 +235,11 @@ void parse_expect(Line& l, Scenario& s, const std::string& text) {
 Scenario parse(const std::string& text, const std::string& file) {
   Scenario s;
   s.file = file;
-  bool have_name = false, have_duration = false, have_title = false;
-  std::istringstream in(text);
-  std::string raw;
-  int n = 0;
-  while (std::getline(in, raw)) {
-    ++n;
-    Line l(file, n, tokenize(raw, file, n));
-    if (l.done()) continue;
-    std::string shown = raw.substr(raw.find_first_not_of(" \t"));
-    if (const auto hash = shown.find('#'); hash != std::string::npos) shown.resize(hash);
-    while (!shown.empty() && (shown.back() == ' ' || shown.back() == '\t' || shown.back() == '\r')) shown.pop_back();
+  text::Header head;
+  const int n = text::each_statement(text, file, kDialect, [&](Line& l, const std::string& shown) {
     const std::string kw = l.word("a statement");
-    if (kw == "scenario") {
-      if (have_name) l.fail("a second 'scenario' line");
-      s.name = l.word("the scenario's name");
-      if (!valid_name(s.name)) l.fail("scenario name '" + s.name + "': letters, digits, _ and - only");
-      have_name = true;
-      l.end();
-    } else if (kw == "title") {
-      if (have_title) l.fail("a second 'title' line");
-      s.title = l.string("the title");
-      have_title = true;
-      l.end();
-    } else if (kw == "duration") {
-      if (have_duration) l.fail("a second 'duration' line");
-      s.duration_us = l.time();
-      if (s.duration_us < 1000 || s.duration_us % 1000 != 0) l.fail("the duration is whole ms, at least 1 ms");
-      have_duration = true;
-      l.end();
-    } else if (kw == "at") {
+    if (head.read(kw, l)) return;
+    if (kw == "at") {
       const std::int64_t t = l.time();
       l.expect_word("press");
       parse_press(l, s, t);
@@ -421,9 +248,11 @@ Scenario parse(const std::string& text, const std::string& file) {
     } else {
       l.fail("unknown statement '" + kw + "' (scenario title duration at expect)");
     }
-  }
-  if (!have_name) throw ParseError(file, n, "no 'scenario NAME' line");
-  if (!have_duration) throw ParseError(file, n, "no 'duration' line");
+  });
+  head.check(file, n);
+  s.name = head.name;
+  s.title = head.title;
+  s.duration_us = head.duration_us;
   std::stable_sort(s.actions.begin(), s.actions.end(), [](const Action& a, const Action& b) { return a.t_us < b.t_us; });
   for (std::size_t i = 0; i < s.actions.size(); ++i) {
     const Action& a = s.actions[i];
@@ -445,12 +274,6 @@ Scenario parse(const std::string& text, const std::string& file) {
   return s;
 }
 
-Scenario parse_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read scenario " + path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse(ss.str(), path);
-}
+Scenario parse_file(const std::string& path) { return parse(text::read_file(path), path); }
 
 }  // namespace ap::sim::hc08

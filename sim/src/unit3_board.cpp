@@ -147,36 +147,19 @@ std::string Board::env(const std::string& line) {
       << " pulses=" << pulses_[0] << "," << pulses_[1] << "," << pulses_[2];
     return r.str();
   }
-  if (verb == "violation") {
-    if (a1.empty() || a1.find_first_not_of("0123456789") != std::string::npos || a1.size() > 9) return "error violation INDEX";
-    const std::size_t i = std::stoul(a1);
-    if (i >= checker_.violations().size()) return "error no violation " + a1;
-    return checker_.violations()[i];
-  }
+  if (verb == "violation") return violation_reply(checker_.violations(), a1);
   return "error unknown environment command '" + verb + "'";
 }
 
-void Board::finish() {
-  if (opt_.out_dir.empty()) return;
-  std::filesystem::create_directories(opt_.out_dir);
-  write_trace_csv(samples_, opt_.out_dir + "/trace.csv");
-  write_vcd(samples_, opt_.out_dir + "/waveforms.vcd");
-  write_svg(samples_, std::filesystem::path(opt_.out_dir).filename().string(), opt_.out_dir + "/plots.svg");
-}
+void Board::finish() { write_board_outputs(opt_.out_dir, samples_); }
 
 int serve_board(const dds::ParticipantPtr& participant, const BoardOptions& opt, std::chrono::milliseconds idle_timeout,
                 const std::atomic<bool>* stop) {
-  dds::BoardEndpoint ep(participant, opt.id);
-  Board board(opt);
-  const dds::Telemetry none{};  // the XY telemetry type: not this unit's (docs/unit3-sim.md)
-  return serve_loop(
-      ep, board, idle_timeout, stop,
-      [&](const dds::CommandSample& cmd) {
-        board.advance_to(static_cast<std::int64_t>(cmd.vtime_us));
-        if (!cmd.bytes.empty()) board.rx(cmd.bytes, static_cast<std::int64_t>(cmd.vtime_us));
-        return board.take_tx(dds::kFrameMax);
-      },
-      [&] { return none; });
+  return serve_unit_board<Board>(participant, opt, idle_timeout, stop, [](Board& board, const dds::CommandSample& cmd) {
+    board.advance_to(static_cast<std::int64_t>(cmd.vtime_us));
+    if (!cmd.bytes.empty()) board.rx(cmd.bytes, static_cast<std::int64_t>(cmd.vtime_us));
+    return board.take_tx(dds::kFrameMax);
+  });
 }
 
 }  // namespace ap::sim::unit3

@@ -11,6 +11,8 @@
 
 #include "pc/dds/domain.hpp"
 #include "protocol/unit3_wire/dialect.hpp"
+#include "sim/lockstep.hpp"
+#include "text.hpp"
 #include "sim/unit3.hpp"
 
 namespace ap::sim::unit3 {
@@ -20,12 +22,6 @@ namespace {
 namespace w = ap::unit3_wire;
 
 const char* const kAxisName[kAxes] = {"X", "Y", "Z"};
-
-std::string tstr(std::int64_t us) {
-  std::ostringstream o;
-  o << static_cast<double>(us) / 1e6 << " s";
-  return o.str();
-}
 
 std::span<const std::uint8_t> as_bytes(const std::string& s) {
   return {reinterpret_cast<const std::uint8_t*>(s.data()), s.size()};
@@ -60,32 +56,16 @@ Line classify(std::int64_t t, const std::string& bytes) {
   return l;
 }
 
+// A board's state and summary: "pulses=500 counter=16000 ..." (Board::env "state"; the words,
+// source=pc, are dropped).
 using State = std::map<std::string, std::int64_t>;
-
-// "pulses=500 counter=16000 ..." (Board::env "state"); the words (source=pc) are dropped.
-State parse_state(const std::string& text) {
-  State st;
-  std::istringstream in(text);
-  std::string kv;
-  while (in >> kv) {
-    const auto eq = kv.find('=');
-    if (eq == std::string::npos) continue;
-    const std::string v = kv.substr(eq + 1);
-    if (v.empty() || v.find_first_not_of("-0123456789") != std::string::npos) continue;
-    st[kv.substr(0, eq)] = std::stoll(v);
-  }
-  return st;
-}
 
 class Pc {
  public:
-  Pc(const Scenario& s, const RunOptions& opt, std::uint32_t domain) : s_(s), opt_(opt) {
-    pp_ = dds::make_participant(domain);
-    ep_ = std::make_unique<dds::PcEndpoint>(pp_, 0);
-  }
+  Pc(const Scenario& s, const RunOptions& opt, std::uint32_t domain) : s_(s), opt_(opt), link_("unit3", domain) {}
 
   RunResult run() {
-    if (!ep_->wait_matched(std::chrono::seconds(20))) throw dds::Error("unit3 run: the board did not appear on the bus within 20 s");
+    link_.wait_board();
     const auto wall0 = std::chrono::steady_clock::now();
     for (const std::int64_t t : timeline()) {
       std::string bytes;
@@ -99,14 +79,9 @@ class Pc {
       snapshot(t);
     }
     // The board's own verdict: its safety checks and its reply queue.
-    const State sum = parse_state(env("summary", s_.duration_us));
+    const State sum = env_fields(env("summary", s_.duration_us));
     r_.ticks = static_cast<std::uint64_t>(sum.count("ticks") != 0 ? sum.at("ticks") : 0);
-    const std::int64_t violations = sum.count("violations") != 0 ? sum.at("violations") : -1;
-    if (violations < 0) r_.failures.push_back("the board gave no summary");
-    for (std::int64_t i = 0; i < std::min<std::int64_t>(violations, 50); ++i) {
-      r_.failures.push_back("safety: " + env("violation " + std::to_string(i), s_.duration_us));
-    }
-    if (violations > 50) r_.failures.push_back("safety: " + std::to_string(violations - 50) + " more violations");
+    link_.safety_failures(sum.count("violations") != 0 ? sum.at("violations") : -1, s_.duration_us, r_.failures);
     if (sum.count("dropped") != 0 && sum.at("dropped") > 0) {
       r_.failures.push_back("the unit dropped " + std::to_string(sum.at("dropped")) + " replies (its reply queue was full)");
     }
@@ -114,23 +89,17 @@ class Pc {
       r_.failures.push_back("the board ran " + std::to_string(r_.ticks) + " ticks, not " + std::to_string(s_.duration_us / 1000));
     }
     for (std::size_t a = 0; a < kAxes; ++a) {
-      const State st = parse_state(env(std::string("state ") + "xyz"[a], s_.duration_us));
+      const State st = env_fields(env(std::string("state ") + "xyz"[a], s_.duration_us));
       r_.pulses[a] = static_cast<std::uint64_t>(st.count("pulses") != 0 ? st.at("pulses") : 0);
     }
     if (!pending_.empty()) r_.failures.push_back("the PC holds " + std::to_string(pending_.size()) + " bytes without a ';' at the end");
     judge();
-    // Shut the board down (it writes its outputs).
-    flagged({}, s_.duration_us, dds::kFlagShutdown);
-    r_.vtime_us = s_.duration_us;
-    r_.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    return std::move(r_);
+    return link_.finish(std::move(r_), s_.duration_us, wall0);
   }
 
  private:
   std::vector<std::int64_t> timeline() const {
-    std::set<std::int64_t> t;
-    for (std::int64_t k = opt_.step_us; k < s_.duration_us; k += opt_.step_us) t.insert(k);
-    t.insert(s_.duration_us);
+    std::set<std::int64_t> t = lockstep_times(opt_.step_us, s_.duration_us);
     for (const Action& a : s_.actions) t.insert(a.t_us);
     for (const Expectation& e : s_.expectations) {
       t.insert(e.t_us);
@@ -145,8 +114,7 @@ class Pc {
       const std::size_t n = std::min(bytes.size() - off, dds::kFrameMax);
       const std::vector<std::uint8_t> chunk(bytes.begin() + static_cast<std::ptrdiff_t>(off),
                                             bytes.begin() + static_cast<std::ptrdiff_t>(off + n));
-      const dds::EchoSample e = ep_->step(chunk, static_cast<std::uint64_t>(t));
-      ++r_.bus_round_trips;
+      const dds::EchoSample e = link_.step(chunk, t);
       read(e.bytes, t);
       off += n;
     } while (off < bytes.size());
@@ -167,23 +135,7 @@ class Pc {
     }
   }
 
-  // A flagged command (environment, shutdown) and its echo; PcEndpoint::step sends unflagged.
-  dds::EchoSample flagged(std::span<const std::uint8_t> bytes, std::int64_t t, std::uint32_t flags) {
-    const std::uint64_t seq = ep_->send(bytes, static_cast<std::uint64_t>(t), flags);
-    ++r_.bus_round_trips;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    for (;;) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-      auto e = ep_->take_echo(std::max(left, std::chrono::milliseconds(0)));
-      if (!e) throw dds::Error("unit3 run: the board did not answer bus command " + std::to_string(seq));
-      if (e->cmd_seq == seq) return std::move(*e);
-    }
-  }
-
-  std::string env(const std::string& text, std::int64_t t) {
-    const dds::EchoSample e = flagged(as_bytes(text), t, kFlagEnv);
-    return {e.bytes.begin(), e.bytes.end()};
-  }
+  std::string env(const std::string& text, std::int64_t t) { return link_.env(text, t); }
 
   void act(const Action& a) {
     std::string cmd;
@@ -212,7 +164,7 @@ class Pc {
       if (!needs) continue;
       for (const std::int64_t when : {e.t_us, e.kind == ExpectKind::Between ? e.t0_us : e.t_us}) {
         if (when != t || states_.count({t, e.axis}) != 0) continue;
-        states_[{t, e.axis}] = parse_state(env(std::string("state ") + "xyz"[e.axis], t));
+        states_[{t, e.axis}] = env_fields(env(std::string("state ") + "xyz"[e.axis], t));
       }
     }
   }
@@ -301,8 +253,7 @@ class Pc {
 
   const Scenario& s_;
   const RunOptions& opt_;
-  dds::ParticipantPtr pp_;
-  std::unique_ptr<dds::PcEndpoint> ep_;
+  LockstepLink link_;
   RunResult r_;
   std::string pending_;
   std::vector<Line> lines_;
@@ -312,51 +263,15 @@ class Pc {
 }  // namespace
 
 RunResult run_scenario(const Scenario& s, const RunOptions& opt) {
-  if (opt.step_us <= 0) throw std::runtime_error("unit3 run: the lockstep period must be positive");
-  dds::use_loopback_config(false);
-  std::optional<dds::DomainLease> lease;
-  const std::uint32_t domain = dds::fixed_or_claimed(opt.domain, lease);
-  const std::string out_dir = opt.out_root.empty() ? std::string() : opt.out_root + "/" + s.name;
-  if (!out_dir.empty() && !opt.join) {
-    // A stale trace of an earlier run must not pass for this one's.
-    std::filesystem::remove_all(out_dir);
-  }
-  std::atomic<bool> stop{false};
-  std::thread board;
-  int rc = 0;
-  dds::ParticipantPtr board_pp;
-  if (!opt.join) {
-    board_pp = dds::make_participant(domain);
-    BoardOptions bo;
-    bo.eeprom = s.eeprom;
-    bo.out_dir = out_dir;
-    board = std::thread([&, bo] {
-      try {
-        rc = serve_board(board_pp, bo, std::chrono::seconds(60), &stop);
-      } catch (const std::exception& e) {
-        rc = 3;
-        if (opt.log != nullptr) *opt.log << "unit3 board: " << e.what() << '\n';
-      }
-    });
-  }
-  RunResult r;
-  try {
-    r = Pc(s, opt, domain).run();
-  } catch (...) {
-    stop = true;
-    if (board.joinable()) board.join();
-    throw;
-  }
-  if (board.joinable()) board.join();
-  if (!opt.join && rc != 0) r.failures.push_back("the board did not shut down cleanly (code " + std::to_string(rc) + ")");
-  r.pass = r.failures.empty();
-  r.domain = domain;
-  r.out_dir = opt.join ? std::string() : out_dir;
-  if (!r.out_dir.empty()) {
-    std::filesystem::create_directories(r.out_dir);
-    std::ofstream(r.out_dir + "/report.txt") << format_report(s, r);
-  }
-  return r;
+  return run_lockstep(
+      "unit3", s.name, opt,
+      [&](const dds::ParticipantPtr& pp, const std::string& out_dir, const std::atomic<bool>* stop) {
+        BoardOptions bo;
+        bo.eeprom = s.eeprom;
+        bo.out_dir = out_dir;
+        return serve_board(pp, bo, std::chrono::seconds(60), stop);
+      },
+      [&](std::uint32_t domain) { return Pc(s, opt, domain).run(); }, [&](const RunResult& r) { return format_report(s, r); });
 }
 
 std::string format_report(const Scenario& s, const RunResult& r) {

@@ -4,35 +4,19 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
-#include <fstream>
-#include <sstream>
 
 namespace ap::sim::unit3 {
 
-bool compare(std::int64_t got, Op op, std::int64_t want) {
-  switch (op) {
-    case Op::Eq: return got == want;
-    case Op::Ne: return got != want;
-    case Op::Lt: return got < want;
-    case Op::Le: return got <= want;
-    case Op::Gt: return got > want;
-    case Op::Ge: return got >= want;
-  }
-  return false;
-}
+namespace {
 
-const char* op_text(Op op) {
-  switch (op) {
-    case Op::Eq: return "==";
-    case Op::Ne: return "!=";
-    case Op::Lt: return "<";
-    case Op::Le: return "<=";
-    case Op::Gt: return ">";
-    case Op::Ge: return ">=";
-  }
-  return "?";
-}
+using text::Line;
+
+// The unit3 dialect (docs/unit3-sim.md): strings carry the line's control bytes (\r \n \t \xHH),
+// a time may reach 10^12 us, and the report shows the line up to a " #" comment.
+const text::Dialect kDialect = {
+    .full_escapes = true, .name_at_end = false, .cut_blank_hash = true, .one_title = false, .time = {20, 1'000'000'000'000LL}};
+
+}  // namespace
 
 const char* quantity_name(Quantity q) {
   switch (q) {
@@ -48,177 +32,27 @@ const char* quantity_name(Quantity q) {
 }
 
 bool parse_time(const std::string& number, const std::string& unit, std::int64_t& us) {
-  double scale = 0;
-  if (unit == "s") scale = 1e6;
-  else if (unit == "ms") scale = 1e3;
-  else if (unit == "us") scale = 1;
-  else return false;
-  if (number.find_first_of("0123456789") == std::string::npos || number.size() > 20) return false;
-  bool dot = false;
-  for (const char c : number) {
-    if (c == '.' && !dot) {
-      dot = true;
-    } else if (std::isdigit(static_cast<unsigned char>(c)) == 0) {
-      return false;
-    }
-  }
-  const double v = std::stod(number) * scale;
-  if (v > 1e12) return false;  // 11 days of virtual time: a typo, not a scenario
-  const double r = std::round(v);
-  if (std::fabs(v - r) > 1e-6) return false;  // finer than 1 us
-  us = static_cast<std::int64_t>(r);
-  return true;
+  return text::parse_time(number, unit, us, kDialect.time);
 }
 
 namespace {
 
-struct Token {
-  std::string text;
-  bool quoted = false;
-};
-
-class Line {
- public:
-  Line(std::string file, int n, std::vector<Token> t) : file_(std::move(file)), n_(n), t_(std::move(t)) {}
-
-  [[noreturn]] void fail(const std::string& what) const { throw ParseError(file_, n_, what); }
-  bool done() const { return i_ >= t_.size(); }
-  const Token& peek() const {
-    if (done()) fail("unexpected end of line");
-    return t_[i_];
+std::int64_t integer(Line& l, const char* what) {
+  const std::string w = l.word(what);
+  std::size_t k = 0;
+  if (!w.empty() && (w[0] == '-' || w[0] == '+')) k = 1;
+  if (k == w.size() || w.find_first_not_of("0123456789", k) != std::string::npos || w.size() - k > 18) {
+    l.fail(std::string("expected ") + what + " (an integer), got '" + w + "'");
   }
-  bool peek_is(const char* w) const { return !done() && !t_[i_].quoted && t_[i_].text == w; }
-  std::string word(const char* what) {
-    const Token& t = peek();
-    if (t.quoted) fail(std::string("expected ") + what + ", got a string");
-    ++i_;
-    return t.text;
-  }
-  void expect_word(const char* w) {
-    const std::string got = word(w);
-    if (got != w) fail(std::string("expected '") + w + "', got '" + got + "'");
-  }
-  std::string string(const char* what) {
-    const Token& t = peek();
-    if (!t.quoted) fail(std::string("expected ") + what + " as a \"string\", got '" + t.text + "'");
-    ++i_;
-    return t.text;
-  }
-  // A time: "10 ms", "0.5 s" (also written together, "10ms").
-  std::int64_t time() {
-    std::string num = word("a time");
-    std::string unit;
-    const auto split = num.find_first_not_of("0123456789.");
-    if (split != std::string::npos && split > 0) {
-      unit = num.substr(split);
-      num.resize(split);
-    } else {
-      if (done()) fail("time '" + num + "' needs a unit (s, ms, us)");
-      unit = word("a time unit");
-    }
-    std::int64_t us = 0;
-    if (!parse_time(num, unit, us)) fail("bad time '" + num + " " + unit + "' (a number and s, ms or us, whole us)");
-    return us;
-  }
-  std::int64_t integer(const char* what) {
-    const std::string w = word(what);
-    std::size_t k = 0;
-    if (!w.empty() && (w[0] == '-' || w[0] == '+')) k = 1;
-    if (k == w.size() || w.find_first_not_of("0123456789", k) != std::string::npos || w.size() - k > 18) {
-      fail(std::string("expected ") + what + " (an integer), got '" + w + "'");
-    }
-    return std::stoll(w);
-  }
-  std::uint8_t axis() {
-    const std::string w = word("an axis");
-    if (w == "x" || w == "X") return 0;
-    if (w == "y" || w == "Y") return 1;
-    if (w == "z" || w == "Z") return 2;
-    fail("unknown axis '" + w + "' (x, y or z)");
-  }
-  Op op() {
-    const std::string w = word("a comparison");
-    if (w == "==") return Op::Eq;
-    if (w == "!=") return Op::Ne;
-    if (w == "<") return Op::Lt;
-    if (w == "<=") return Op::Le;
-    if (w == ">") return Op::Gt;
-    if (w == ">=") return Op::Ge;
-    fail("unknown comparison '" + w + "' (== != < <= > >=)");
-  }
-  void end() const {
-    if (!done()) fail("unexpected '" + t_[i_].text + "' at the end of the line");
-  }
-  int number() const { return n_; }
-
- private:
-  std::string file_;
-  int n_;
-  std::vector<Token> t_;
-  std::size_t i_ = 0;
-};
-
-int hex_digit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
+  return std::stoll(w);
 }
 
-// Words split on blanks; "strings" with \" \\ \r \n \t \xHH; `#` outside a string ends the line.
-std::vector<Token> tokenize(const std::string& s, const std::string& file, int n) {
-  std::vector<Token> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const char c = s[i];
-    if (c == ' ' || c == '\t' || c == '\r') {
-      ++i;
-    } else if (c == '#') {
-      break;
-    } else if (c == '"') {
-      Token t{"", true};
-      ++i;
-      for (;;) {
-        if (i >= s.size()) throw ParseError(file, n, "unterminated string");
-        const char d = s[i++];
-        if (d == '"') break;
-        if (d != '\\') {
-          t.text += d;
-          continue;
-        }
-        if (i >= s.size()) throw ParseError(file, n, "unterminated string");
-        const char e = s[i++];
-        switch (e) {
-          case '"': t.text += '"'; break;
-          case '\\': t.text += '\\'; break;
-          case 'r': t.text += '\r'; break;
-          case 'n': t.text += '\n'; break;
-          case 't': t.text += '\t'; break;
-          case 'x': {
-            const int hi = i < s.size() ? hex_digit(s[i]) : -1;
-            const int lo = i + 1 < s.size() ? hex_digit(s[i + 1]) : -1;
-            if (hi < 0 || lo < 0) throw ParseError(file, n, "\\x needs two hex digits");
-            t.text += static_cast<char>(hi * 16 + lo);
-            i += 2;
-            break;
-          }
-          default: throw ParseError(file, n, std::string("unknown escape \\") + e);
-        }
-      }
-      out.push_back(std::move(t));
-    } else {
-      Token t;
-      while (i < s.size() && s[i] != ' ' && s[i] != '\t' && s[i] != '\r' && s[i] != '#' && s[i] != '"') t.text += s[i++];
-      out.push_back(std::move(t));
-    }
-  }
-  return out;
-}
-
-bool valid_name(const std::string& n) {
-  return !n.empty() && std::all_of(n.begin(), n.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-';
-  });
+std::uint8_t axis(Line& l) {
+  const std::string w = l.word("an axis");
+  if (w == "x" || w == "X") return 0;
+  if (w == "y" || w == "Y") return 1;
+  if (w == "z" || w == "Z") return 2;
+  l.fail("unknown axis '" + w + "' (x, y or z)");
 }
 
 Quantity quantity(Line& l) {
@@ -233,7 +67,7 @@ Quantity quantity(Line& l) {
 // The value of an At/Between expectation: an integer, or + / - for dir.
 std::int64_t quantity_value(Line& l, Quantity q) {
   if (q == Quantity::Dir && (l.peek_is("+") || l.peek_is("-"))) return l.word("a direction") == "+" ? 1 : -1;
-  return l.integer("a value");
+  return integer(l, "a value");
 }
 
 void parse_action(Line& l, Scenario& s, std::int64_t t) {
@@ -247,7 +81,7 @@ void parse_action(Line& l, Scenario& s, std::int64_t t) {
     if (a.bytes.empty()) l.fail("send of no bytes");
     if (l.peek_is("lose")) {
       l.word("lose");
-      const std::int64_t k = l.integer("the index of the lost byte");
+      const std::int64_t k = integer(l, "the index of the lost byte");
       if (k < 0 || static_cast<std::size_t>(k) >= a.bytes.size()) {
         l.fail("lose " + std::to_string(k) + ": the string has bytes 0.." + std::to_string(a.bytes.size() - 1));
       }
@@ -255,13 +89,13 @@ void parse_action(Line& l, Scenario& s, std::int64_t t) {
     }
   } else if (verb == "joystick") {
     a.kind = ActionKind::Joystick;
-    a.axis = l.axis();
-    const std::int64_t v = l.integer("an ADC value");
+    a.axis = axis(l);
+    const std::int64_t v = integer(l, "an ADC value");
     if (v < 0 || v > 65535) l.fail("ADC value " + std::to_string(v) + " outside 0..65535");
     a.adc = static_cast<std::uint16_t>(v);
   } else if (verb == "endstop") {
     a.kind = ActionKind::Endstop;
-    a.axis = l.axis();
+    a.axis = axis(l);
     const std::string end = l.word("min or max");
     if (end != "min" && end != "max") l.fail("expected min or max, got '" + end + "'");
     a.max_end = end == "max";
@@ -327,7 +161,7 @@ void parse_expect(Line& l, Scenario& s, const std::string& text) {
     }
     e.t_us = time_or_end();
     e.quantity = quantity(l);
-    e.axis = l.axis();
+    e.axis = axis(l);
     e.op = l.op();
     e.value = quantity_value(l, e.quantity);
     if (e.kind == ExpectKind::Between && e.t_us != kEnd && e.t_us <= e.t0_us) l.fail("between T1 and T2 needs T1 < T2");
@@ -336,24 +170,24 @@ void parse_expect(Line& l, Scenario& s, const std::string& text) {
     if (by) l.fail("'by' and 'end' together");
     e.kind = ExpectKind::At;
     e.quantity = quantity(l);
-    e.axis = l.axis();
+    e.axis = axis(l);
     e.op = l.op();
     e.value = quantity_value(l, e.quantity);
   } else if (w == "report") {
     e.kind = ExpectKind::Report;
-    e.axis = l.axis();
+    e.axis = axis(l);
     e.op = l.op();
     if (l.peek_is("counter")) {
       l.word("counter");
       e.value_is_counter = true;
     } else {
-      e.value = l.integer("a counter value");
+      e.value = integer(l, "a counter value");
     }
   } else if (w == "replies") {
     e.kind = ExpectKind::Replies;
     e.bytes = l.string("the reply");
     e.op = l.op();
-    e.value = l.integer("a count");
+    e.value = integer(l, "a count");
   } else if (w == "reply") {
     e.kind = ExpectKind::Replies;
     e.bytes = l.string("the reply");
@@ -391,35 +225,12 @@ void parse_expect(Line& l, Scenario& s, const std::string& text) {
 Scenario parse(const std::string& text, const std::string& file) {
   Scenario s;
   s.file = file;
-  bool have_name = false, have_duration = false, have_eeprom = false;
-  std::istringstream in(text);
-  std::string raw;
-  int n = 0;
-  while (std::getline(in, raw)) {
-    ++n;
-    Line l(file, n, tokenize(raw, file, n));
-    if (l.done()) continue;
-    std::string trimmed = raw.substr(raw.find_first_not_of(" \t"));
-    if (const auto hash = trimmed.find(" #"); hash != std::string::npos && trimmed.find('"') == std::string::npos) {
-      trimmed.resize(hash);
-    }
+  text::Header head;
+  bool have_eeprom = false;
+  const int n = text::each_statement(text, file, kDialect, [&](Line& l, const std::string& shown) {
     const std::string kw = l.word("a statement");
-    if (kw == "scenario") {
-      if (have_name) l.fail("a second 'scenario' line");
-      s.name = l.word("the scenario's name");
-      if (!valid_name(s.name)) l.fail("scenario name '" + s.name + "': letters, digits, _ and - only");
-      have_name = true;
-      l.end();
-    } else if (kw == "title") {
-      s.title = l.string("the title");
-      l.end();
-    } else if (kw == "duration") {
-      if (have_duration) l.fail("a second 'duration' line");
-      s.duration_us = l.time();
-      if (s.duration_us < 1000 || s.duration_us % 1000 != 0) l.fail("the duration is whole ms, at least 1 ms");
-      have_duration = true;
-      l.end();
-    } else if (kw == "eeprom") {
+    if (head.read(kw, l)) return;
+    if (kw == "eeprom") {
       if (have_eeprom) l.fail("a second 'eeprom' line");
       const std::string w = l.word("default or blank");
       if (w == "default") s.eeprom = Eeprom::Default;
@@ -431,13 +242,15 @@ Scenario parse(const std::string& text, const std::string& file) {
       const std::int64_t t = l.time();
       parse_action(l, s, t);
     } else if (kw == "expect") {
-      parse_expect(l, s, trimmed);
+      parse_expect(l, s, shown);
     } else {
       l.fail("unknown statement '" + kw + "' (scenario title duration eeprom at expect)");
     }
-  }
-  if (!have_name) throw ParseError(file, n, "no 'scenario NAME' line");
-  if (!have_duration) throw ParseError(file, n, "no 'duration' line");
+  });
+  head.check(file, n);
+  s.name = head.name;
+  s.title = head.title;
+  s.duration_us = head.duration_us;
   for (const Action& a : s.actions) {
     if (a.t_us >= s.duration_us) throw ParseError(file, a.line, "action at or after the end of the run");
   }
@@ -452,12 +265,6 @@ Scenario parse(const std::string& text, const std::string& file) {
   return s;
 }
 
-Scenario parse_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read scenario " + path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse(ss.str(), path);
-}
+Scenario parse_file(const std::string& path) { return parse(text::read_file(path), path); }
 
 }  // namespace ap::sim::unit3

@@ -20,6 +20,7 @@
 
 #include "models/waveform/svg.hpp"
 #include "models/waveform/vcd.hpp"
+#include "profile_sim_support.hpp"
 #include "sim/hc08.hpp"
 
 namespace fs = std::filesystem;
@@ -27,23 +28,13 @@ namespace h = ap::sim::hc08;
 
 namespace {
 
+using ap::sim::test::count_of;
+using ap::sim::test::says;
+using ap::sim::test::slurp;
+
+std::vector<std::string> bundled() { return ap::sim::test::bundled(AP_HC08_SCENARIOS); }
+
 std::string out_root() { return std::string(AP_BINARY_DIR) + "/sim-out/hc08"; }
-
-std::vector<std::string> bundled() {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(AP_HC08_SCENARIOS)) {
-    if (e.path().extension() == ".scn") names.push_back(e.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string slurp(const std::string& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 h::RunResult run(const h::Scenario& s, const std::string& root = out_root()) {
   h::RunOptions o;
@@ -58,16 +49,6 @@ void drive(h::Board& b, const h::Scenario& s) {
     ASSERT_EQ(b.press(a.code, a.hold_ms, a.bounce), "") << "line " << a.line;
   }
   b.advance_to(s.duration_us);
-}
-
-std::size_t count_of(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
-  return n;
-}
-
-bool says(const std::vector<std::string>& v, const std::string& what) {
-  return std::any_of(v.begin(), v.end(), [&](const std::string& s) { return s.find(what) != std::string::npos; });
 }
 
 }  // namespace
@@ -91,12 +72,7 @@ TEST_P(Bundled, Passes) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Hc08SimScenario, Bundled, ::testing::ValuesIn(bundled()),
-                         [](const ::testing::TestParamInfo<std::string>& i) {
-                           std::string n = i.param;
-                           std::replace_if(n.begin(), n.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) == 0; }, '_');
-                           return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(Hc08SimScenario, Bundled, ::testing::ValuesIn(bundled()), ap::sim::test::test_name);
 
 TEST(Hc08SimScenario, AtLeastSevenAreBundled) { EXPECT_GE(bundled().size(), 7U); }
 
@@ -151,15 +127,7 @@ TEST(Hc08SimVerdict, EveryKindOfExpectationCanFail) {
 // ---------------------------------------------------------------------------------------------
 namespace {
 
-int error_line(const std::string& text, std::string* what = nullptr) {
-  try {
-    h::parse(text, "bad.scn");
-  } catch (const h::ParseError& e) {
-    if (what != nullptr) *what = e.what();
-    return e.line();
-  }
-  return 0;
-}
+void parse(const std::string& text, const std::string& file) { (void)h::parse(text, file); }
 
 }  // namespace
 
@@ -221,12 +189,7 @@ TEST(Hc08SimParser, ReadsEveryStatement) {
 
 TEST(Hc08SimParser, ErrorsNameTheFileAndLine) {
   const std::string ok = "scenario s\nduration 1 s\n";  // lines 1-2
-  struct Case {
-    std::string text;
-    int line;
-    const char* says;
-  };
-  const std::vector<Case> cases = {
+  ap::sim::test::expect_errors(parse, {
       {ok + "title \"abc\n", 3, "unterminated string"},
       {ok + "at 10 parsecs press set\n", 3, "bad time"},
       {ok + "at 10 ms press jump\n", 3, "unknown key"},
@@ -261,29 +224,20 @@ TEST(Hc08SimParser, ErrorsNameTheFileAndLine) {
       {"scenario s\n", 1, "no 'duration'"},
       {ok + "launch\n", 3, "unknown statement"},
       {ok + "title \"\\q\"\n", 3, "escapes only"},
-  };
-  for (const Case& c : cases) {
-    std::string what;
-    EXPECT_EQ(error_line(c.text, &what), c.line) << c.text;
-    EXPECT_NE(what.find("bad.scn:" + std::to_string(c.line) + ": "), std::string::npos) << what;
-    EXPECT_NE(what.find(c.says), std::string::npos) << what;
-  }
+  });
 }
 
-TEST(Hc08SimParser, TimesAreExactMicroseconds) {
+// Times in exact microseconds: properties/sim/scenario_text_test.cpp. Here, that the hc08
+// language reads them in its dialect (up to a day of virtual time, 15 characters).
+TEST(Hc08SimParser, TimesInTheHc08Dialect) {
   std::int64_t us = 0;
-  EXPECT_TRUE(h::parse_time("0.52", "ms", us));
-  EXPECT_EQ(us, 520);
   EXPECT_TRUE(h::parse_time("1.25", "s", us));
   EXPECT_EQ(us, 1'250'000);
-  EXPECT_TRUE(h::parse_time("1327200", "us", us));
-  EXPECT_EQ(us, 1'327'200);
-  EXPECT_FALSE(h::parse_time("0.5", "us", us));  // finer than 1 us
-  EXPECT_FALSE(h::parse_time("0.0000001", "s", us));
-  EXPECT_FALSE(h::parse_time("-1", "s", us));
-  EXPECT_FALSE(h::parse_time("1", "min", us));
-  EXPECT_FALSE(h::parse_time(".", "s", us));
-  EXPECT_FALSE(h::parse_time("", "s", us));
+  EXPECT_FALSE(h::parse_time("0.0000001", "s", us));  // finer than 1 us
+  EXPECT_TRUE(h::parse_time("86400", "s", us));
+  EXPECT_EQ(us, 86'400'000'000LL);
+  EXPECT_FALSE(h::parse_time("86400.000001", "s", us));
+  EXPECT_FALSE(h::parse_time("0000000000000001", "us", us));
 }
 
 TEST(Hc08SimParser, KeyNames) {

@@ -22,17 +22,11 @@
 #include <string>
 #include <vector>
 
+#include "sim/scenario_text.hpp"
+
 namespace ap::sim::hc08 {
 
-class ParseError : public std::runtime_error {
- public:
-  ParseError(const std::string& file, int line, const std::string& what)
-      : std::runtime_error(file + ":" + std::to_string(line) + ": " + what), line_(line) {}
-  [[nodiscard]] int line() const { return line_; }
-
- private:
-  int line_;
-};
+using text::ParseError;
 
 // A key press as the keypad scan sees it (docs/hc08-sim.md "Keys"): the key's code for `hold`
 // whole milliseconds from the first scan after T, then 0. With `bounce` the first and the last
@@ -53,9 +47,9 @@ struct Action {
   bool bounce = false;
 };
 
-enum class Op : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };
-bool compare(std::int64_t got, Op op, std::int64_t want);
-const char* op_text(Op op);
+using text::compare;
+using text::Op;
+using text::op_text;
 
 // What an expectation reads (docs/hc08-sim.md "Quantities"). The display's: Value (digits 1-4),
 // Point (digits after the decimal point), Indicator (X1..X6), Mode (K2 = A, K3 = B), Drive

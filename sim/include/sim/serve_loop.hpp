@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,42 @@ int serve_loop(dds::BoardEndpoint& ep, Board& board, std::chrono::milliseconds i
     const std::vector<std::uint8_t> tx = step(*cmd);
     ep.echo(*cmd, tx, telemetry());
   }
+}
+
+// The board side of a profile whose unit sends no XY telemetry (unit3, hc08): its Board built
+// from `opt` (opt.id is the board's number on the bus) served until a shutdown, `idle_timeout`
+// or `stop`; `step(board, cmd)` runs a plain command and returns the bytes the unit sent.
+template <class Board, class Options, class Step>
+int serve_unit_board(const dds::ParticipantPtr& participant, const Options& opt, std::chrono::milliseconds idle_timeout,
+                     const std::atomic<bool>* stop, Step step) {
+  dds::BoardEndpoint ep(participant, opt.id);
+  Board board(opt);
+  const dds::Telemetry none{};  // the XY telemetry type: not this unit's (docs/sim.md)
+  return serve_loop(
+      ep, board, idle_timeout, stop, [&](const dds::CommandSample& cmd) { return step(board, cmd); }, [&] { return none; });
+}
+
+// The reply to the environment command `violation INDEX`: the board's safety checker's
+// violation number INDEX (0-based, up to 9 digits), or an error line.
+inline std::string violation_reply(const std::vector<std::string>& violations, const std::string& index) {
+  if (index.empty() || index.size() > 9 || index.find_first_not_of("0123456789") != std::string::npos) {
+    return "error violation INDEX";
+  }
+  const std::size_t i = std::stoul(index);
+  if (i >= violations.size()) return "error no violation " + index;
+  return violations[i];
+}
+
+// Board::finish() of such a profile: trace.csv, waveforms.vcd and plots.svg (titled with the
+// run's name, the folder's) under out_dir, none when it is empty. The writers are the
+// profile's, found by the rows' type (write_trace_csv, write_vcd, write_svg of its namespace).
+template <class Rows>
+void write_board_outputs(const std::string& out_dir, const Rows& rows) {
+  if (out_dir.empty()) return;
+  std::filesystem::create_directories(out_dir);
+  write_trace_csv(rows, out_dir + "/trace.csv");
+  write_vcd(rows, out_dir + "/waveforms.vcd");
+  write_svg(rows, std::filesystem::path(out_dir).filename().string(), out_dir + "/plots.svg");
 }
 
 }  // namespace ap::sim

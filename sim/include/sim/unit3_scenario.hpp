@@ -24,17 +24,11 @@
 #include <string>
 #include <vector>
 
+#include "sim/scenario_text.hpp"
+
 namespace ap::sim::unit3 {
 
-class ParseError : public std::runtime_error {
- public:
-  ParseError(const std::string& file, int line, const std::string& what)
-      : std::runtime_error(file + ":" + std::to_string(line) + ": " + what), line_(line) {}
-  [[nodiscard]] int line() const { return line_; }
-
- private:
-  int line_;
-};
+using text::ParseError;
 
 enum class Eeprom : std::uint8_t {
   Default,  // an image holding the default settings (full step, M6), as a written unit has
@@ -56,9 +50,9 @@ struct Action {
   std::uint32_t times = 1; // Press: xN
 };
 
-enum class Op : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };
-bool compare(std::int64_t got, Op op, std::int64_t want);
-const char* op_text(Op op);
+using text::compare;
+using text::Op;
+using text::op_text;
 
 // What an expectation judges. Report, Replies, Settings, NoErrors: the bytes the PC received
 // by `t_us`. At: the board's quantity at `t_us`. Between: its change from `t0_us` to `t_us`.
