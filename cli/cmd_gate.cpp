@@ -447,7 +447,10 @@ Outcome m4_stage(gate::Run& run, const std::string& log) {
   std::smatch m;
   std::string key = st == 0 ? "built" : "cross build or check failed (see log)";
   if (std::regex_search(txt, m, std::regex(R"(flash (\d+) B of (\d+) B \(([\d.]+)%\), RAM (\d+) B of (\d+) B \(([\d.]+)%\))"))) {
-    const auto kb = [](const std::string& b) { return std::to_string(std::stoll(b) / 1024) + " KB"; };
+    const auto kb = [](const std::string& b) {
+      const long long n = std::stoll(b);
+      return n % 1024 == 0 ? std::to_string(n / 1024) + " KB" : std::to_string(n) + " B";
+    };
     key = "flash " + m[1].str() + " B (" + m[3].str() + " % of " + kb(m[2].str()) + "), RAM " + m[4].str() + " B (" + m[6].str() +
           " % of " + kb(m[5].str()) + ")";
     if (st != 0) key += "; check failed";
