@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   ap::cli::add_bench(app);
   ap::cli::add_frame(app);
   ap::cli::add_regs(app);
+  ap::cli::add_gcode(app);
 
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;

@@ -427,6 +427,60 @@ void SimBoard::trace_tick() {
       plot_v_[a].push_back(s.v / static_cast<double>(axis::kSpeedScale) * um_per_ustep / 1000.0 * s.dir);
     }
   }
+  path_tick(um_per_ustep);
+}
+
+void SimBoard::path_tick(double um_per_ustep) {
+  const path::Executor& p = board_->path();
+  const bool active = p.active();
+  if (opt_.out_dir.empty() || (!active && !path_was_active_)) {
+    path_was_active_ = active;
+    return;
+  }
+  path_was_active_ = active;
+  const scurve::Kinematics k = p.kinematics();
+  const double mm = um_per_ustep / 1000.0;  // one move is one step of the driving axis
+  PathRow r;
+  r.t_s = static_cast<double>(ticks_) / 1000.0;
+  r.x_mm = board_->axis_state(board::Axis::X).pos * mm;
+  r.y_mm = board_->axis_state(board::Axis::Y).pos * mm;
+  r.carriage_x_mm = carriage_um_[0] / 1000.0;
+  r.carriage_y_mm = carriage_um_[1] / 1000.0;
+  r.v = static_cast<double>(k.vel_milli) / 1000.0 * mm;
+  r.a = static_cast<double>(k.accel_milli) / 1000.0 * mm;
+  r.j = static_cast<double>(k.jerk_milli) / 1000.0 * mm;
+  path_rows_.push_back(r);
+}
+
+void SimBoard::write_path_outputs() const {
+  if (path_rows_.empty()) return;
+  {
+    std::ofstream c(opt_.out_dir + "/path.csv", std::ios::trunc);
+    c << "t_s,x_mm,y_mm,carriage_x_mm,carriage_y_mm,v_mm_s,a_mm_s2,j_mm_s3\n";
+    char buf[256];
+    for (const PathRow& r : path_rows_) {
+      std::snprintf(buf, sizeof buf, "%.3f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", r.t_s, r.x_mm, r.y_mm, r.carriage_x_mm,
+                    r.carriage_y_mm, r.v, r.a, r.j);
+      c << buf;
+    }
+  }
+  std::array<wf::Panel, 3> panels;
+  const std::array<std::pair<const char*, const char*>, 3> names{
+      {{"Speed along the driving axis", "v [mm/s]"}, {"Acceleration", "a [mm/s^2]"}, {"Jerk", "j [mm/s^3]"}}};
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    panels[i].title = names[i].first;
+    panels[i].x_label = "t [s]";
+    panels[i].y_label = names[i].second;
+    wf::Series s;
+    s.label = names[i].second;
+    for (const PathRow& r : path_rows_) {
+      s.x.push_back(r.t_s);
+      s.y.push_back(i == 0 ? r.v : (i == 1 ? r.a : r.j));
+    }
+    panels[i].series.push_back(std::move(s));
+  }
+  std::ofstream o(opt_.out_dir + "/profile.svg", std::ios::trunc);
+  wf::write_svg(o, "Board " + std::to_string(opt_.id) + ": the path's S-curve (seed-003.md Fig. 30)", panels);
 }
 
 void SimBoard::rx(std::span<const std::uint8_t> bytes) {
@@ -635,6 +689,7 @@ void SimBoard::finish() {
     std::ofstream s(opt_.out_dir + "/plots.svg", std::ios::trunc);
     wf::write_motion_svg(s, "Board " + std::to_string(opt_.id) + ": position and speed", traces);
   }
+  write_path_outputs();
   if (wave_) {
     wave_->finish();
     vcd_file_->flush();

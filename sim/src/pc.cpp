@@ -5,6 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -12,6 +15,7 @@
 #include <variant>
 
 #include "pc/client/client.hpp"
+#include "pc/gcode/program.hpp"
 #include "protocol/codec/commands.hpp"
 #include "protocol/codec/layout.hpp"
 #include "protocol/codec/statuses.hpp"
@@ -225,6 +229,33 @@ class Pc {
     }
   }
 
+  // The program of a `gcode` action: the path as written, else from the source tree.
+  pcgcode::Program load_gcode(const sc::Action& a, const std::string& where) {
+    std::string path = a.word;
+    if (!std::filesystem::is_regular_file(path)) path = std::string(AP_SOURCE_DIR) + "/" + a.word;
+    std::ifstream in(path);
+    if (!in) {
+      fail(where + ": cannot read G-code file " + a.word);
+      return {};
+    }
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    pcgcode::Options o;
+    o.dialect = a.word2 == "thesis" ? gcode::Dialect::Thesis : gcode::Dialect::Tolerant;
+    try {
+      pcgcode::Program p = pcgcode::translate(text, o, a.word);
+      // The board queues 16 segments (docs/cnc.md "Refusals"); the simulated PC sends a program
+      // at once, so a longer one would meet QueueFull.
+      if (p.segment_frames > 16) {
+        fail(where + ": " + a.word + " has more than 16 XY segments (the board's queue)");
+        return {};
+      }
+      return p;
+    } catch (const pcgcode::ProgramError& e) {
+      fail(where + ": " + e.what());
+    }
+    return {};
+  }
+
   static std::int32_t um(const sc::Action& a) { return static_cast<std::int32_t>(std::llround(a.amount ? a.amount->value : 0.0)); }
 
   // A user command goes to the client, which delivers it exactly once or reports why not.
@@ -299,6 +330,20 @@ class Pc {
             const auto it = std::find(subscribed_.begin(), subscribed_.end(), id);
             if (a.verb == sc::Verb::subscribe && it == subscribed_.end()) subscribed_.push_back(id);
             if (a.verb == sc::Verb::unsubscribe && it != subscribed_.end()) subscribed_.erase(it);
+          }
+          break;
+        }
+        case sc::Verb::gcode: {
+          // docs/cnc.md: the PC parses the program and sends it as path frames; the two parts of
+          // each frame go to the client back to back, so they leave in one frame.
+          const pcgcode::Program prog = load_gcode(a, where);
+          for (const pcgcode::Frame& f : prog.frames) {
+            if (f.y_id == CommandId::Nop) {
+              submit(b, client::Part::Unit, f.x_id, f.x, t);
+            } else {
+              submit(b, client::Part::X, f.x_id, f.x, t);
+              submit(b, client::Part::Y, f.y_id, f.y, t);
+            }
           }
           break;
         }

@@ -72,7 +72,7 @@ constexpr std::array kVerbs{
     Verbs{"ble", Verb::ble},           Verbs{"tmc", Verb::tmc},
     Verbs{"link cut", Verb::link_cut}, Verbs{"link restore", Verb::link_restore},
     Verbs{"peripherals", Verb::peripherals}, Verbs{"endstop", Verb::endstop},
-    Verbs{"button", Verb::button},     Verbs{"raw", Verb::raw},
+    Verbs{"button", Verb::button},     Verbs{"raw", Verb::raw}, Verbs{"gcode", Verb::gcode},
 };
 
 constexpr std::array<std::string_view, 6> kOps{"==", "!=", "<", "<=", ">", ">="};
@@ -324,6 +324,12 @@ Action action(LineParser& p, Action a) {
     case Verb::raw: {
       const std::string tok = p.next("a \"quoted\" frame");
       a.word = unquote(p, tok, "raw frame");
+      break;
+    }
+    case Verb::gcode: {
+      const std::string tok = p.next("a \"quoted\" G-code file");
+      a.word = unquote(p, tok, "G-code file");
+      a.word2 = p.done() ? "tolerant" : p.one_of({"thesis", "tolerant"}, "G-code dialect");
       break;
     }
   }
@@ -657,7 +663,7 @@ std::string to_text(const Scenario& s) {
   for (const Action& a : s.actions) {
     o << "at " << tm(a.t_us) << ' ' << tg(a.target) << to_string(a.verb);
     if (a.axis != 0) o << ' ' << a.axis;
-    if (a.verb == Verb::raw) {
+    if (a.verb == Verb::raw || a.verb == Verb::gcode) {
       o << ' ' << quoted(a.word);
     } else if (!a.word.empty()) {
       o << ' ' << a.word;

@@ -98,6 +98,11 @@ Board::Board(const Hardware& hw)
   table_.install(c::CommandId::PeriphOn, &Board::on_periph_on);
   table_.install(c::CommandId::SaveParams, &Board::on_save);
   table_.install(c::CommandId::ClearFault, &Board::on_clear);
+  table_.install(c::CommandId::PathLine, &Board::on_path_part<c::CommandId::PathLine>);
+  table_.install(c::CommandId::PathCentre, &Board::on_path_part<c::CommandId::PathCentre>);
+  table_.install(c::CommandId::PathArcCw, &Board::on_path_part<c::CommandId::PathArcCw>);
+  table_.install(c::CommandId::PathArcCcw, &Board::on_path_part<c::CommandId::PathArcCcw>);
+  table_.install(c::CommandId::PathEnd, &Board::on_path_end);
   derived_ = derive(store_.current());
 }
 
@@ -162,6 +167,7 @@ void Board::tick() {
   pending_.fill(axis::Command{});
   pending_id_.fill(c::CommandId::Nop);
   refused_.fill(kNoRefusal);
+  path_error_ = path::Error::None;
   begin_of_cycle();
   receive();
   step_axes();
@@ -257,6 +263,7 @@ void Board::handle(const frame::RawCommandFramer::Event& e) {
   ++counters_.dispatched_frames;
   if (r.x == HandlerStatus::Refused) ++counters_.refused_parts;
   if (r.y == HandlerStatus::Refused) ++counters_.refused_parts;
+  commit_path_frame();
   frame_this_cycle_ = true;
   echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs, false};
 }
@@ -266,6 +273,11 @@ void Board::step_axes() {
   watchdog_ = axis::watchdog_tick(watchdog_, frame_this_cycle_);
   const bool alive = axis::link_alive(watchdog_);
   if (was_alive && !alive) ++counters_.watchdog_expiries;
+  if (path_.active()) {
+    // The path drives both axes; their own motion commands are refused meanwhile.
+    step_path(alive);
+    return;
+  }
   for (std::size_t i = 0; i < kAxes; ++i) {
     axis::Input in;
     in.cmd = pending_[i];
@@ -370,7 +382,7 @@ void Board::send_echoes() {
 }
 
 ShutdownResult Board::shutdown() {
-  if (moving(axes_[0]) || moving(axes_[1])) return ShutdownResult::Moving;
+  if (moving(axes_[0]) || moving(axes_[1]) || path_.active()) return ShutdownResult::Moving;
   const st::SaveResult r = store_.record_shutdown(axes_[0].pos, axes_[1].pos);
   if (!r.ok()) {
     fault_ = kFaultStorage + static_cast<std::int32_t>(r.status);
@@ -520,11 +532,18 @@ HandlerStatus Board::on_nop(void*, Axis, std::int32_t) { return HandlerStatus::D
 
 HandlerStatus Board::on_stop(void* ctx, Axis a, std::int32_t) {
   auto* b = static_cast<Board*>(ctx);
+  if (b->path_.active()) {
+    // A stop of either axis stops the path: both axes share one S-curve (docs/cnc.md "Stops").
+    if (!b->path_.stopping()) b->path_stop_event_ = AxisEvent::StoppedByUser;
+    b->path_.stop();
+    return HandlerStatus::Done;
+  }
   return b->set_axis_command(a, c::CommandId::Stop, {axis::CmdKind::Stop, 0, 0, 0});
 }
 
 HandlerStatus Board::on_jog(void* ctx, Axis a, std::int32_t data) {
   auto* b = static_cast<Board*>(ctx);
+  if (b->path_.active()) return b->refuse(a, c::CommandId::Jog);  // the path holds both axes
   if (data == 0) return b->set_axis_command(a, c::CommandId::Jog, {axis::CmdKind::Stop, 0, 0, 0});
   if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Jog);
   const std::int8_t dir = data > 0 ? std::int8_t{1} : std::int8_t{-1};
@@ -534,6 +553,7 @@ HandlerStatus Board::on_jog(void* ctx, Axis a, std::int32_t data) {
 
 HandlerStatus Board::on_goto(void* ctx, Axis a, std::int32_t um) {
   auto* b = static_cast<Board*>(ctx);
+  if (b->path_.active()) return b->refuse(a, c::CommandId::Goto);  // the path holds both axes
   const st::ParameterSet& p = b->store_.current();
   const bool x = a == Axis::X;
   const axis::Converted t =
@@ -547,6 +567,7 @@ HandlerStatus Board::on_goto(void* ctx, Axis a, std::int32_t um) {
 
 HandlerStatus Board::on_move(void* ctx, Axis a, std::int32_t um) {
   auto* b = static_cast<Board*>(ctx);
+  if (b->path_.active()) return b->refuse(a, c::CommandId::Move);  // the path holds both axes
   const axis::Converted d = axis::um_to_usteps(um, b->derived_.mech, axis::Round::Nearest);
   if (d.error != axis::Error::None) return b->refuse(a, c::CommandId::Move);
   if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Move);
@@ -555,6 +576,7 @@ HandlerStatus Board::on_move(void* ctx, Axis a, std::int32_t um) {
 
 HandlerStatus Board::on_home(void* ctx, Axis a, std::int32_t) {
   auto* b = static_cast<Board*>(ctx);
+  if (b->path_.active()) return b->refuse(a, c::CommandId::Home);  // the path holds both axes
   if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Home);
   return b->set_axis_command(a, c::CommandId::Home, {axis::CmdKind::Home, 0, 0, 0});
 }
@@ -579,6 +601,9 @@ HandlerStatus Board::on_param(void* ctx, Axis a, std::int32_t value, c::CommandI
 
 HandlerStatus Board::set_parameter(Axis a, c::CommandId id, st::ParamId pid, std::int32_t value) {
   param_cycle_ = true;
+  const bool current = pid == st::ParamId::RunCurrent || pid == st::ParamId::HoldCurrent;
+  // A queued path was converted and planned with the parameters in force (docs/cnc.md).
+  if (path_.active() && !current) return refuse(a, id);
   st::ParameterSet next = store_.current();
   if (!st::set_field(next, pid, value) || !st::validate(next).ok()) return refuse(a, id);
   const Derived d = derive(next);

@@ -76,6 +76,9 @@ Motion motion_of(const board::Board& b) {
     m[a].steps = b.motor_output(ax).steps;
     m[a].dir = b.motor_output(ax).dir;
   }
+  // The path's progress (docs/echo-model.md "The coordinated path"): physics, not a verdict.
+  m.path.active = b.path().active();
+  m.path.queued = static_cast<std::uint32_t>(b.path().queued());
   return m;
 }
 

@@ -2,6 +2,7 @@
 // core/board (docs/echo-model.md).
 #include "models/echo/echo_model.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <string>
 
@@ -42,6 +43,37 @@ std::int64_t div_floor(std::int64_t num, std::int64_t den) {
 std::int64_t div_ceil(std::int64_t num, std::int64_t den) { return -div_floor(-num, den); }
 
 bool power_of_two(std::int32_t v) { return v > 0 && (v & (v - 1)) == 0; }
+
+// docs/cnc.md "Refusals": a segment's |delta| <= 2^24 usteps, an arc's offsets <= 2^20 usteps;
+// the queue holds 16 segments.
+constexpr std::int64_t kPathMaxDelta = std::int64_t{1} << 24;
+constexpr std::int64_t kPathMaxOffset = std::int64_t{1} << 20;
+constexpr std::uint32_t kPathQueue = 16;
+
+std::int64_t isqrt_floor(std::int64_t v) {  // v >= 0
+  auto r = static_cast<std::int64_t>(std::sqrt(static_cast<double>(v)));
+  while (r * r > v) --r;
+  while ((r + 1) * (r + 1) <= v) ++r;
+  return r;
+}
+
+// Whether an arc around the origin from angle a0 to a1 (radians, atan2) passes angle t
+// (inclusive at both ends: an end lying exactly on an axis direction counts as passing it,
+// docs/echo-model.md "The coordinated path"). ccw: counter-clockwise (y up); a full circle
+// (a0 == a1, start == end) passes everything.
+bool arc_passes(double a0, double a1, double t, bool ccw, bool full) {
+  if (full) return true;
+  constexpr double kTwoPi = 2.0 * 3.14159265358979323846;
+  constexpr double kEps = 1e-12;
+  const auto norm = [&](double v) {
+    v = std::fmod(v, kTwoPi);
+    return v < 0 ? v + kTwoPi : v;
+  };
+  double sweep = ccw ? norm(a1 - a0) : norm(a0 - a1);
+  if (sweep <= kEps) sweep = kTwoPi;
+  const double d = ccw ? norm(t - a0) : norm(a0 - t);
+  return d <= sweep + kEps || d >= kTwoPi - kEps;
+}
 
 }  // namespace
 
@@ -104,6 +136,9 @@ void EchoModel::begin_tick(const Env& env) {
       x.stop_requested = false;
       x.link_ended = false;
     }
+    // cnc.md "Stops": a block is a controlled stop of the path; like the axes' own motion,
+    // what ended it is cleared on leaving BLOCKED (G16).
+    if (path_.running) path_.stop = PathStop::Block;
   }
   if (was != EchoStatus::Idle && block_ == EchoStatus::Idle) {
     // G16: back to user control with both axes idle and the last event cleared.
@@ -117,6 +152,7 @@ void EchoModel::begin_tick(const Env& env) {
     x.stopped_move_now = false;
   }
   at_tick_start_ = ax_;
+  path_.added = 0;
   events_.clear();
   out_.clear();
   dispatched_this_tick_ = false;
@@ -194,6 +230,9 @@ void EchoModel::frame(const FrameEvent& ev) {
   // Dispatched: X handler then Y handler; the watchdog is refreshed (G15).
   dispatch(frame::Axis::X, ev.frame.x.id, ev.frame.x.data);
   dispatch(frame::Axis::Y, ev.frame.y.id, ev.frame.y.data);
+  // docs/cnc.md "From G-code to the axes" 2: the path parts of one frame are one segment,
+  // checked and queued once both parts are handled.
+  path_frame(ev.frame);
   since_dispatch_ = 0;
   dispatched_this_tick_ = true;
   events_.push_back(p);
@@ -276,6 +315,8 @@ bool EchoModel::set_param(CommandId id, std::int32_t d, std::string& why) {
   // parameter except the two currents) -> save -> apply.
   if (id == CommandId::SetIrun) return p_.irun = d, true;
   if (id == CommandId::SetIhold) return p_.ihold = d, true;
+  // docs/cnc.md "Refusals": the path was converted and planned with the parameters in force.
+  if (path_.running) return why = "a path is active", false;
   Params n = p_;
   switch (id) {
     case CommandId::SetAccel: n.accel = d; break;
@@ -328,7 +369,9 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     case CommandId::Nop: return;
     case CommandId::Stop:
     stop:
-      // motion.md §6: a ramped stop, always accepted.
+      // motion.md §6: a ramped stop, always accepted. cnc.md "Stops": either axis's stop
+      // stops the path (a controlled stop along it).
+      path_request_stop(PathStop::User);
       supersede(a);
       if (x.act != Activity::Idle) {
         x.stopped_move_now = x.act == Activity::Position;
@@ -337,6 +380,9 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
       }
       return;
     case CommandId::Jog: {
+      // cnc.md "Refusals": `jog` is refused while a path is active, its release (data 0) too
+      // (docs/echo-model.md "The coordinated path").
+      if (path_.running) return refuse(a, id, "a path is active");
       if (d == 0) goto stop;  // G20: key released = ramped stop
       const std::int8_t dir = d > 0 ? 1 : -1;
       if (sleeping_) return refuse(a, id, "sleeping");  // board.md G24
@@ -348,6 +394,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     case CommandId::Goto:
     case CommandId::Move: {
       if (sleeping_) return refuse(a, id, "sleeping");
+      if (path_.running) return refuse(a, id, "a path is active");  // cnc.md "Refusals"
       if (!x.homed) return refuse(a, id, "position unknown");  // motion.md §6
       std::int64_t target = 0;
       if (id == CommandId::Goto) {
@@ -370,6 +417,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     }
     case CommandId::Home:
       if (sleeping_) return refuse(a, id, "sleeping");
+      if (path_.running) return refuse(a, id, "a path is active");  // cnc.md "Refusals"
       start(Activity::Home);
       if (x.last.phase == Phase::Stop && (env_.endstop_min[a] || x.latch_min)) {
         // motion.md §6: resting on the (active or latched) min switch is the reference point.
@@ -396,6 +444,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     case CommandId::PeriphOff:
       // G24: the axes get a ramped stop; motion commands are refused until wake.
       sleeping_ = true;
+      path_request_stop(PathStop::User);  // cnc.md "Stops": sleep is a controlled stop
       for (std::size_t b = 0; b < kAxes; ++b) {
         supersede(b);
         Ax& y = ax_[b];
@@ -408,7 +457,166 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     case CommandId::PeriphOn: sleeping_ = false; return;
     case CommandId::SaveParams: return;
     case CommandId::ClearFault: fault_ = 0; return;
+    case CommandId::PathLine:
+    case CommandId::PathCentre:
+    case CommandId::PathArcCw:
+    case CommandId::PathArcCcw:
+    case CommandId::PathEnd: return;  // path_frame(), once both parts are handled
   }
+}
+
+// ---------------------------------------------------------------- the coordinated path
+// docs/cnc.md "From G-code to the axes" and "On the board"; the decisions where it is silent
+// are in docs/echo-model.md "The coordinated path".
+bool EchoModel::is_path_part(CommandId id) {
+  return id == CommandId::PathLine || id == CommandId::PathCentre || id == CommandId::PathArcCw ||
+         id == CommandId::PathArcCcw;
+}
+
+void EchoModel::path_request_stop(PathStop why) {
+  if (!path_.running || path_.stop == PathStop::Block) return;
+  // A user stop names the end even after the link expired (as for a jog: the user's stop is
+  // what the PC asked for last); a block overrides both (G16 clears the event).
+  if (why == PathStop::Link && path_.stop != PathStop::None) return;
+  path_.stop = why;
+  // A path standing (no chain moving: waiting to be closed, or between chains) has nothing to
+  // brake: the stop drops its queue at once, so a command later in the same cycle finds no
+  // path (docs/echo-model.md "The coordinated path").
+  if (why == PathStop::User && ax_[0].last.phase == Phase::Stop && ax_[1].last.phase == Phase::Stop) {
+    path_finish(path_.moved ? Ended::Stopped : Ended::None);
+  }
+}
+
+void EchoModel::path_finish(Ended e) {
+  // The event that ended the last motion; a path that never moved ended none (like a stop at
+  // rest, docs/echo-model.md "Decisions"), the axes keep IDLE.
+  if (block_ != EchoStatus::Idle || !path_.moved) e = Ended::None;
+  for (Ax& x : ax_) x.ended = e;
+  path_.running = false;
+  path_.moved = false;
+  path_.stop = PathStop::None;
+}
+
+const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std::int32_t, kAxes>& end) const {
+  const std::array<const frame::AxisCommand*, kAxes> part{&f.x, &f.y};
+  bool line = false, cw = false, ccw = false, centre = false;
+  for (const auto* q : part) {
+    line |= q->id == CommandId::PathLine;
+    cw |= q->id == CommandId::PathArcCw;
+    ccw |= q->id == CommandId::PathArcCcw;
+    centre |= q->id == CommandId::PathCentre;
+  }
+  const int kinds = int{line} + int{cw} + int{ccw};
+  if (kinds > 1 || (centre && kinds > 0)) return "mixed parts";  // MixedParts
+  if (centre) return nullptr;  // a centre is only stored (decision, docs/echo-model.md)
+  // A motion command accepted earlier in this cycle is only stored: the segment supersedes it
+  // (docs/board.md "One cycle"; supersede()), so the axes count as the axis core knows them.
+  const auto known = [&](std::size_t a) -> const Ax& { return ax_[a].started_now ? at_tick_start_[a] : ax_[a]; };
+  if (!known(0).homed || !known(1).homed) return "not homed";
+  if (sleeping_) return "sleeping";
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    if (known(a).act != Activity::Idle) return "an axis moves on its own";  // Busy
+  }
+  if (path_.running && path_.stop != PathStop::None) return "a stop is running";  // Stopping
+  if ((cw || ccw) && !path_.centre_set) return "arc without a centre";             // NoCentre
+  // The segment starts where the queue ends, or at the axes' position when nothing is queued.
+  const std::array<std::int64_t, kAxes> start{path_.running ? path_.end[0] : ax_[0].last.pos,
+                                              path_.running ? path_.end[1] : ax_[1].last.pos};
+  std::array<std::int64_t, kAxes> e{};
+  for (std::size_t a = 0; a < kAxes; ++a) {
+    // cnc.md step 3: um -> usteps nearest, as goto; a part carrying something else keeps the
+    // axis where the queue ends.
+    e[a] = (part[a]->id == CommandId::PathLine || part[a]->id == CommandId::PathArcCw ||
+            part[a]->id == CommandId::PathArcCcw)
+               ? to_usteps(part[a]->data)
+               : start[a];
+    if (e[a] < limit_min(a) || e[a] > limit_max(a)) return "end outside the soft limits";
+    if (std::llabs(e[a] - start[a]) > kPathMaxDelta) return "too long";
+  }
+  if (line) {
+    if (e == start) return "zero length";
+  } else {
+    std::array<std::int64_t, kAxes> c{};
+    for (std::size_t a = 0; a < kAxes; ++a) {
+      const std::int64_t off = to_usteps(path_.centre_um[a]);
+      if (std::llabs(off) > kPathMaxOffset) return "too long";
+      c[a] = start[a] + off;
+    }
+    if (c == start || c == e) return "zero radius";
+    const auto sq = [](std::int64_t v) { return v * v; };
+    const std::int64_t rs = isqrt_floor(sq(start[0] - c[0]) + sq(start[1] - c[1]));
+    const std::int64_t re = isqrt_floor(sq(e[0] - c[0]) + sq(e[1] - c[1]));
+    // max(2 steps, 0.1 % of r): for integers |rs - re| > r/1000 exactly when > floor(r/1000).
+    const std::int64_t tol = rs / 1000 > 2 ? rs / 1000 : 2;
+    if (std::llabs(rs - re) > tol) return "radius mismatch";
+    // Swept extremes: radius + 2 steps along each axis direction the arc passes (in double).
+    const double a0 = std::atan2(static_cast<double>(start[1] - c[1]), static_cast<double>(start[0] - c[0]));
+    const double a1 = std::atan2(static_cast<double>(e[1] - c[1]), static_cast<double>(e[0] - c[0]));
+    const bool full = e == start;
+    const double reach = static_cast<double>(rs) + 2.0;
+    constexpr double kHalfPi = 1.57079632679489661923;
+    for (int k = 0; k < 4; ++k) {
+      if (!arc_passes(a0, a1, k * kHalfPi, ccw, full)) continue;
+      const std::size_t a = (k % 2 == 0) ? 0 : 1;  // 0, 180 deg: x; 90, 270 deg: y
+      const double extreme = static_cast<double>(c[a]) + (k < 2 ? reach : -reach);
+      if (extreme > static_cast<double>(limit_max(a)) || extreme < static_cast<double>(limit_min(a))) {
+        return "swept extreme outside the soft limits";
+      }
+    }
+  }
+  if (path_.queued + path_.added >= kPathQueue) return "queue full";
+  for (std::size_t a = 0; a < kAxes; ++a) end[a] = static_cast<std::int32_t>(e[a]);
+  return nullptr;
+}
+
+void EchoModel::path_frame(const frame::CommandFrame& f) {
+  const std::array<const frame::AxisCommand*, kAxes> part{&f.x, &f.y};
+  if (!is_path_part(f.x.id) && !is_path_part(f.y.id)) return;
+  std::array<std::int32_t, kAxes> end{};
+  if (path_verdict(f, end) != nullptr) {
+    // cnc.md "Refusals": the echo's COMMAND_REFUSED with the command's ID on each part that
+    // carried a path command; nothing changes.
+    for (std::size_t a = 0; a < kAxes; ++a) {
+      if (is_path_part(part[a]->id)) ax_[a].refused = part[a]->id;
+    }
+    return;
+  }
+  if (f.x.id == CommandId::PathCentre || f.y.id == CommandId::PathCentre) {
+    // I on X, J on Y; a part that carries no centre gives 0 (G-code: an omitted I or J is 0).
+    path_.centre_set = true;
+    for (std::size_t a = 0; a < kAxes; ++a) path_.centre_um[a] = part[a]->id == CommandId::PathCentre ? part[a]->data : 0;
+    return;
+  }
+  if (f.x.id != CommandId::PathLine && f.y.id != CommandId::PathLine) path_.centre_set = false;  // used by its arc
+  for (std::size_t a = 0; a < kAxes; ++a) supersede(a);  // the path drives both axes now
+  path_.running = true;
+  path_.end = end;
+  ++path_.added;
+  // A motion starts: the event that ended the last one no longer describes the axes.
+  for (Ax& x : ax_) x.ended = Ended::None;
+}
+
+void EchoModel::path_end_tick(const Motion& motion) {
+  path_.queued = motion.path.queued;
+  if (motion.path.active && !path_.running) {
+    violations_.push_back("the path is active at tick " + std::to_string(ticks_) + " with no accepted segment");
+  }
+  if (path_.running && (motion[0].phase != Phase::Stop || motion[1].phase != Phase::Stop || motion[0].steps > 0 ||
+                        motion[1].steps > 0)) {
+    path_.moved = true;
+  }
+  if (!path_.running || motion.path.active) return;
+  // The path came to rest (cnc.md "Stops"): a stop names its cause; otherwise at the end of
+  // the last segment it reached it, and short of it an endstop halted it.
+  Ended e = Ended::None;
+  const bool at_end = motion[0].pos == path_.end[0] && motion[1].pos == path_.end[1];
+  switch (path_.stop) {
+    case PathStop::Block: e = Ended::None; break;
+    case PathStop::User: e = Ended::Stopped; break;
+    case PathStop::Link: e = Ended::LinkLost; break;
+    case PathStop::None: e = at_end ? Ended::Reached : Ended::Endstop; break;
+  }
+  path_finish(e);
 }
 
 // ---------------------------------------------------------------- after the axes stepped
@@ -416,6 +624,8 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
   // G15: a jog needs a dispatched frame within the last 300 ticks and an open session.
   const bool alive = session_ && since_dispatch_ < kWatchdogTicks;
   if (since_dispatch_ < 0xFFFFFFFFU) ++since_dispatch_;
+  // cnc.md "Stops": a lost link or a closed session stops the path (unlike a move).
+  if (!alive) path_request_stop(PathStop::Link);
   for (std::size_t a = 0; a < kAxes; ++a) {
     Ax& x = ax_[a];
     const AxisMotion& m = motion[a];
@@ -447,7 +657,7 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
       continue;
     }
     if (moving) {
-      if (x.act == Activity::Idle && !was_moving) {
+      if (x.act == Activity::Idle && !was_moving && !path_.running) {
         violations_.push_back("axis " + std::string(a == 0 ? "x" : "y") + " started at tick " + std::to_string(ticks_) +
                               " with no accepted motion command");
       }
@@ -513,6 +723,7 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
     }
     x.last = m;
   }
+  path_end_tick(motion);
   if (taken_this_tick_) {
     last_block_ = block_;
     for (std::size_t a = 0; a < kAxes; ++a) last_refused_[a] = ax_[a].refused;

@@ -1,5 +1,7 @@
 #include "models/safety/board_monitor.hpp"
 
+#include <algorithm>
+
 #include "core/axis/watchdog.hpp"
 
 namespace ap::model::safety {
@@ -28,6 +30,43 @@ void BoardMonitor::booted(const board::Board& b) {
 void BoardMonitor::before_tick(const board::Board& b) {
   for (std::size_t a = 0; a < board::kAxes; ++a) before_[a] = b.axis_state(static_cast<board::Axis>(a));
   mech_ = b.mechanics();
+  path_active_ = b.path().active();
+  path_stopping_ = b.path().stopping();
+  path_vel_ = b.path().kinematics().vel_milli;
+  path_acc_ = b.path().kinematics().accel_milli;
+  if (b.path().queued() > 0) path_end_ = b.path().queue_end();
+}
+
+void BoardMonitor::check_path(const board::Board& b, std::vector<Violation>& out) {
+  const std::uint32_t t = b.ticks();
+  const path::Executor& p = b.path();
+  if (!path_active_ && !p.active()) return;
+  // The move rate is at most v_max (the slower axis's fast speed): v_max / 1000 moves per tick,
+  // one more for the floor of the profile's position, and a tick may also make the moves a
+  // reversal held back from the tick before (docs/cnc.md "Axis speeds").
+  const std::int64_t v_max = std::min<std::int64_t>(b.axis_config(board::Axis::X).v_fast, b.axis_config(board::Axis::Y).v_fast);
+  const std::int64_t per_tick = 2 * (v_max / 1000 + 1);
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    if (b.motor_output(static_cast<board::Axis>(a)).steps > per_tick) {
+      out.push_back({t, static_cast<int>(a), "path steps faster than its v_max"});
+    }
+  }
+  // A jerk-limited stop first ramps a positive acceleration down to zero (the thesis's rule:
+  // deceleration starts at a = 0, seed-003.md §9); from then on the speed never rises.
+  if (path_stopping_ && p.active() && path_acc_ <= 0 && p.kinematics().vel_milli > path_vel_) {
+    out.push_back({t, -1, "path speed rose during a controlled stop"});
+  }
+  if (path_active_ && !p.active() && !path_stopping_) {
+    bool reached = true;
+    for (std::size_t a = 0; a < board::kAxes; ++a) {
+      reached = reached && b.axis_event(static_cast<board::Axis>(a)) == board::AxisEvent::Reached;
+    }
+    for (std::size_t a = 0; reached && a < board::kAxes; ++a) {
+      if (b.axis_state(static_cast<board::Axis>(a)).pos != path_end_[a]) {
+        out.push_back({t, static_cast<int>(a), "path ended away from its last segment's end"});
+      }
+    }
+  }
 }
 
 void BoardMonitor::after_tick(const board::Board& b, std::vector<Violation>& out) {
@@ -40,6 +79,7 @@ void BoardMonitor::after_tick(const board::Board& b, std::vector<Violation>& out
     check_axis(b, a, mech_changed, out);
     any_steps = any_steps || b.motor_output(static_cast<board::Axis>(a)).steps > 0;
   }
+  check_path(b, out);
   // The saved step counter is never marked valid while the carriage moves.
   if (any_steps && b.store().current().step_counts_valid) out.push_back({b.ticks(), -1, "step while the saved counter is valid"});
 }
@@ -72,7 +112,9 @@ void BoardMonitor::check_axis(const board::Board& b, std::size_t a, bool mech_ch
   if (b.block() == board::Block::None) {
     x.blocked_stopped = false;
   } else {
-    if (n.v > p.v) bad("speed increased while blocked");
+    // On an arc one axis's share of the path speed can grow while the path brakes: there the
+    // path's own speed is what must not rise (check_path).
+    if (n.v > p.v && !path_active_) bad("speed increased while blocked");
     if (x.blocked_stopped && (o.steps != 0 || n.v != 0)) bad("step while blocked after the stop");
     x.blocked_stopped = x.blocked_stopped || n.v == 0;
   }

@@ -8,6 +8,8 @@ ObligationList all_obligations() {
   add_axis_obligations(out);
   add_timer_obligations(out);
   add_storage_obligations(out);
+  add_interp_obligations(out);
+  add_scurve_obligations(out);
   return out;
 }
 

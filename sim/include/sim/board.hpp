@@ -174,6 +174,15 @@ class SimBoard {
   std::vector<Violation> violations_;
   std::vector<std::string> trace_rows_;
   std::array<std::vector<double>, board::kAxes> plot_t_, plot_pos_, plot_v_;
+  // The coordinated path (docs/cnc.md): path.csv and profile.svg, while a path runs.
+  struct PathRow {
+    double t_s = 0, x_mm = 0, y_mm = 0, carriage_x_mm = 0, carriage_y_mm = 0;
+    double v = 0, a = 0, j = 0;  // the S-curve along the driving axis: mm/s, mm/s^2, mm/s^3
+  };
+  std::vector<PathRow> path_rows_;
+  bool path_was_active_ = false;
+  void path_tick(double um_per_ustep);
+  void write_path_outputs() const;
   std::unique_ptr<std::ofstream> vcd_file_;
   std::unique_ptr<model::waveform::BoardWaveforms> wave_;
   std::array<bool, board::kAxes> wave_dir_{};

@@ -72,6 +72,7 @@ enum class Verb : std::uint8_t {
   endstop,        // endstop AXIS min|max on|off     force a Hall sensor
   button,         // button press|hold
   raw,            // raw "TEXT"                      send this command frame verbatim
+  gcode,          // gcode "FILE" [thesis|tolerant]  run a G-code program as path frames (docs/cnc.md)
 };
 
 struct Action {

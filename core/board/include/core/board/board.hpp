@@ -22,6 +22,7 @@
 #include "core/frame/callback_table.hpp"
 #include "core/frame/frames.hpp"
 #include "core/frame/stream_framer.hpp"
+#include "core/path/executor.hpp"
 #include "core/storage/store.hpp"
 #include "core/tmc2130/driver.hpp"
 
@@ -165,6 +166,10 @@ class Board {
   std::size_t framer_pending() const { return framer_.pending(); }
   frame::AxisEcho axis_echo(Axis a) const;
   std::int32_t position_um(Axis a) const;
+  // The coordinated path (docs/cnc.md "On the board").
+  const path::Executor& path() const { return path_; }
+  // The last path segment's refusal this tick (path::Error::None if none), for tests and traces.
+  path::Error path_error() const { return path_error_; }
 
  private:
   static constexpr std::size_t idx(Axis a) { return static_cast<std::size_t>(a); }
@@ -218,6 +223,17 @@ class Board {
   static frame::HandlerStatus on_periph_on(void*, Axis, std::int32_t);
   static frame::HandlerStatus on_save(void*, Axis, std::int32_t);
   static frame::HandlerStatus on_clear(void*, Axis, std::int32_t);
+  // Path parts are collected per frame and become one segment after the frame's dispatch
+  // (path_commands.cpp): the X and Y parts of one frame are one XY segment.
+  template <codec::CommandId Id>
+  static frame::HandlerStatus on_path_part(void* c, Axis a, std::int32_t d) {
+    return static_cast<Board*>(c)->path_part(a, Id, d);
+  }
+  static frame::HandlerStatus on_path_end(void*, Axis, std::int32_t);
+  frame::HandlerStatus path_part(Axis a, codec::CommandId id, std::int32_t um);
+  void commit_path_frame();
+  path::Limits path_limits() const;
+  void step_path(bool alive);
   static frame::AxisEcho echo_axis(void* ctx, Axis a);
   static frame::AxisEcho echo_axis_replay(void* ctx, Axis a);
   static std::int32_t echo_subscriber(void* ctx, frame::SubscriberSlot slot);
@@ -252,6 +268,14 @@ class Board {
   std::array<std::uint8_t, kAxes> refused_{kNoRefusal, kNoRefusal};
   std::array<AxisEvent, kAxes> event_{};
   std::array<MotorOutput, kAxes> motor_{};
+
+  path::Executor path_{};
+  std::array<codec::CommandId, kAxes> path_id_{codec::CommandId::Nop, codec::CommandId::Nop};  // Nop: no path part
+  std::array<std::int32_t, kAxes> path_um_{};
+  bool centre_set_ = false;
+  std::array<std::int32_t, kAxes> centre_um_{};  // the next arc's absolute centre
+  path::Error path_error_ = path::Error::None;
+  AxisEvent path_stop_event_ = AxisEvent::None;  // why the path is stopping
 
   std::array<PendingEcho, kMaxEchoesPerCycle> echoes_{};
   std::size_t echo_count_ = 0;

@@ -54,7 +54,7 @@ storage::ParameterSet stored_set(model::Mb85rs256b chip);
 Boot boot_facts(const board::Board& b, const board::Inputs& at_boot, const storage::ParameterSet& stored);
 
 // Env and Motion from the board's observers (the sampled inputs; the axis core's phase and
-// step counter and this tick's motor output).
+// step counter and this tick's motor output; the path's active flag and queue length).
 Env env_of(const board::Inputs& in);
 Motion motion_of(const board::Board& b);
 

@@ -61,7 +61,22 @@ struct AxisMotion {
   std::int32_t steps = 0;  // emitted this tick
   std::int8_t dir = 1;
 };
-using Motion = std::array<AxisMotion, kAxes>;
+// The coordinated path's progress after the tick (docs/cnc.md "On the board"; docs/echo-model.md
+// "The coordinated path"). Physics, not a verdict: how far the executor got (which segments are
+// finished, when a chain starts, when a controlled stop comes to rest) follows from the S-curve
+// and the interpolation, verified by properties/path, scurve and interp on their own.
+//   active: the path holds a segment or is still moving or stopping (path::Executor::active()).
+//   queued: segments queued and not yet finished, 0..16 (path::Executor::queued()).
+struct PathMotion {
+  bool active = false;
+  std::uint32_t queued = 0;
+};
+struct Motion {
+  std::array<AxisMotion, kAxes> axis{};
+  PathMotion path{};
+  AxisMotion& operator[](std::size_t a) { return axis[a]; }
+  const AxisMotion& operator[](std::size_t a) const { return axis[a]; }
+};
 
 // One frame event of the receive path: the link layer's verdict (syntax, CRC; docs/protocol.md
 // "Receiving") and, when intact, the frame with its IDs as received (00..99, not yet checked
@@ -137,6 +152,8 @@ class EchoModel {
 
   // Observers for tests.
   Activity activity(std::size_t a) const { return ax_[a].act; }
+  // The model's view of the path: a segment accepted and the path not yet seen at rest.
+  bool path_running() const { return path_.running; }
   Ended ended(std::size_t a) const { return ax_[a].ended; }
   bool blocked() const { return block_ != codec::EchoStatus::Idle; }
   bool sleeping() const { return sleeping_; }
@@ -164,6 +181,25 @@ class EchoModel {
     AxisMotion last{};
   };
 
+  // The coordinated path as the PC sees it (docs/cnc.md "On the board").
+  enum class PathStop : std::uint8_t { None, User, Link, Block };
+  struct PathState {
+    bool running = false;                  // a segment was accepted; the path not yet seen at rest
+    std::array<std::int32_t, kAxes> end{};  // usteps: the end of the last accepted segment
+    std::uint32_t queued = 0;               // observed at the end of the last tick
+    std::uint32_t added = 0;                // segments accepted in this tick
+    bool centre_set = false;
+    std::array<std::int32_t, kAxes> centre_um{};  // the next arc's centre from its start (I, J)
+    PathStop stop = PathStop::None;         // why the running path is stopping
+    bool moved = false;                     // an axis was seen moving since it was accepted
+  };
+  static bool is_path_part(codec::CommandId id);
+  void path_frame(const frame::CommandFrame& f);
+  const char* path_verdict(const frame::CommandFrame& f, std::array<std::int32_t, kAxes>& end) const;
+  void path_request_stop(PathStop why);
+  void path_end_tick(const Motion& motion);
+  void path_finish(Ended e);
+
   void dispatch(frame::Axis a, codec::CommandId id, std::int32_t d);
   void refuse(std::size_t a, codec::CommandId id, const char* why);
   bool motion_allowed(std::size_t a, std::int8_t dir) const;
@@ -178,6 +214,7 @@ class EchoModel {
   Expected build(std::size_t event) const;
 
   Params p_{};
+  PathState path_{};
   Env env_{};
   std::array<Ax, kAxes> ax_{};
   // Each axis as the axis core knows it at the start of the tick: a command of this tick is

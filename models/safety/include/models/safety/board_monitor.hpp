@@ -9,7 +9,10 @@
 //   - no jog outlives three silent command periods (frames that feed the watchdog: run, or a
 //     repeat of the last one taken, docs/protocol.md "Delivery");
 //   - a target set from rest is never passed (no overshoot);
-//   - no step while the saved step counter is marked valid.
+//   - no step while the saved step counter is marked valid;
+//   - the coordinated path (docs/cnc.md "Safety properties"): no axis steps faster than the
+//     path's v_max allows, a stopping path never speeds up, a path that ends without a stop
+//     ends exactly where its last segment ends.
 // Used by the board fuzz target (aborts on the first) and the simulated board (reports them).
 #pragma once
 
@@ -53,6 +56,13 @@ class BoardMonitor {
   axis::Mechanics mech_{};
   std::uint32_t silent_ = axis::kLinkTimeoutTicks;
   std::uint32_t fed_ = 0;
+  // The path as seen before the tick.
+  bool path_active_ = false;
+  bool path_stopping_ = false;
+  std::int64_t path_vel_ = 0;
+  std::int64_t path_acc_ = 0;
+  std::array<std::int32_t, board::kAxes> path_end_{};
+  void check_path(const board::Board& b, std::vector<Violation>& out);
 };
 
 }  // namespace ap::model::safety

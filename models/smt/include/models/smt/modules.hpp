@@ -9,6 +9,8 @@ void add_tmc2130_obligations(ObligationList& out);
 void add_axis_obligations(ObligationList& out);     // axis_obligations.cpp
 void add_timer_obligations(ObligationList& out);    // timer_obligations.cpp
 void add_storage_obligations(ObligationList& out);  // storage_obligations.cpp
+void add_interp_obligations(ObligationList& out);   // interp_obligations.cpp (docs/interpolation.md)
+void add_scurve_obligations(ObligationList& out);   // scurve_obligations.cpp (docs/scurve.md)
 
 // The unit3 profile's obligations (docs/unit3.md), apart from the XY platform's above.
 ObligationList unit3_obligations();  // unit3_obligations.cpp

@@ -32,6 +32,11 @@ enum class CommandId : std::uint8_t {
   PeriphOn = 16,
   SaveParams = 17,
   ClearFault = 18,
+  PathLine = 19,
+  PathCentre = 20,
+  PathArcCw = 21,
+  PathArcCcw = 22,
+  PathEnd = 23,
 };
 
 // Unit-wide commands act once per frame whichever axis part carries them; the other part
@@ -73,6 +78,13 @@ struct CommandInfo {
     CommandInfo{CommandId::PeriphOn, "wake", Scope::Unit, "DummyData; peripherals on", "-", {0, 0}},
     CommandInfo{CommandId::SaveParams, "save", Scope::Unit, "DummyData; write parameters to FRAM", "-", {0, 0}},
     CommandInfo{CommandId::ClearFault, "clear", Scope::Unit, "DummyData; leave the fault state", "-", {0, 0}},
+    // The coordinated path (docs/cnc.md "On the board"): the X and Y parts of ONE frame form one
+    // segment; an axis whose part carries something else keeps its last queued end.
+    CommandInfo{CommandId::PathLine, "line", Scope::Axis, "absolute end of a coordinated line (path queue)", "um", {0, 999999}},
+    CommandInfo{CommandId::PathCentre, "centre", Scope::Axis, "absolute centre of the next arc", "um", {0, 999999}},
+    CommandInfo{CommandId::PathArcCw, "arc_cw", Scope::Axis, "absolute end of a clockwise arc (G2)", "um", {0, 999999}},
+    CommandInfo{CommandId::PathArcCcw, "arc_ccw", Scope::Axis, "absolute end of a counter-clockwise arc (G3)", "um", {0, 999999}},
+    CommandInfo{CommandId::PathEnd, "path_end", Scope::Unit, "DummyData; the last queued segment ends at rest", "-", {0, 0}},
 };
 
 inline constexpr std::size_t kCommandCount = kCommands.size();

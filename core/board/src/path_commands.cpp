@@ -1,0 +1,176 @@
+// The board's side of the coordinated path (docs/cnc.md "On the board"): the path commands'
+// handlers, the segment a frame's two parts make, and the tick that drives both axes from the
+// path executor instead of the axis core.
+#include <algorithm>
+
+#include "core/board/board.hpp"
+#include "protocol/codec/commands.hpp"
+
+namespace ap::board {
+
+namespace c = ap::codec;
+using frame::HandlerStatus;
+
+namespace {
+
+// The thesis's jerk limit, J = 20 mm/s^3 (seed-003.md §5.3.1), in micrometres: the platform's
+// path jerk. A stored parameter would change the FRAM map; docs/cnc.md "Speeds" has why not.
+constexpr std::int32_t kPathJerkUmS3 = 20'000;
+
+bool is_segment(c::CommandId id) {
+  return id == c::CommandId::PathLine || id == c::CommandId::PathArcCw || id == c::CommandId::PathArcCcw;
+}
+
+axis::Phase phase_of(std::uint8_t profile_segment, bool stopping) {
+  if (stopping) return axis::Phase::Decel;
+  if (profile_segment < 3) return axis::Phase::Accel;
+  if (profile_segment == 3) return axis::Phase::Const;
+  return axis::Phase::Decel;
+}
+
+}  // namespace
+
+path::Limits Board::path_limits() const {
+  path::Limits lim;
+  const axis::Config& x = derived_.cfg[0];
+  const axis::Config& y = derived_.cfg[1];
+  // One profile moves both axes, so the slower axis's speed and acceleration bound the path.
+  lim.motion.v_max = std::min({x.v_fast, y.v_fast, scurve::kMaxVelocity});
+  lim.motion.a_max = std::min(x.accel, y.accel);
+  const axis::Converted j = axis::um_to_usteps(kPathJerkUmS3, derived_.mech, axis::Round::Nearest);
+  lim.motion.j_max = std::max<std::int32_t>(j.value, 1);
+  lim.soft_min = {x.soft_min, y.soft_min};
+  lim.soft_max = {x.soft_max, y.soft_max};
+  return lim;
+}
+
+HandlerStatus Board::path_part(Axis a, c::CommandId id, std::int32_t um) {
+  const std::size_t i = idx(a);
+  path_id_[i] = id;
+  path_um_[i] = um;
+  return HandlerStatus::Done;
+}
+
+HandlerStatus Board::on_path_end(void* ctx, Axis, std::int32_t) {
+  static_cast<Board*>(ctx)->path_.close();
+  return HandlerStatus::Done;
+}
+
+// After a frame's dispatch: its path parts become the next arc's centre or one segment.
+void Board::commit_path_frame() {
+  const std::array<c::CommandId, kAxes> ids = path_id_;
+  path_id_ = {c::CommandId::Nop, c::CommandId::Nop};
+  const auto refuse_parts = [&](path::Error e) {
+    path_error_ = e;
+    for (std::size_t i = 0; i < kAxes; ++i) {
+      if (ids[i] == c::CommandId::Nop) continue;
+      refused_[i] = static_cast<std::uint8_t>(ids[i]);
+      ++counters_.refused_parts;
+    }
+  };
+  const bool centre = ids[0] == c::CommandId::PathCentre || ids[1] == c::CommandId::PathCentre;
+  const bool segment = is_segment(ids[0]) || is_segment(ids[1]);
+  if (!centre && !segment) return;
+  if (centre && segment) return refuse_parts(path::Error::MixedParts);  // one frame, one meaning
+  if (centre) {
+    // Both parts carry the centre's absolute coordinates (docs/cnc.md).
+    if (ids[0] != c::CommandId::PathCentre || ids[1] != c::CommandId::PathCentre) return refuse_parts(path::Error::MixedParts);
+    centre_um_ = path_um_;
+    centre_set_ = true;
+    return;
+  }
+  c::CommandId kind = c::CommandId::Nop;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    if (!is_segment(ids[i])) continue;
+    if (kind != c::CommandId::Nop && ids[i] != kind) return refuse_parts(path::Error::MixedParts);
+    kind = ids[i];
+  }
+  // What every motion command needs: awake, the position known, no axis moving on its own.
+  bool busy = false;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    if (axes_[i].homed == 0) return refuse_parts(path::Error::NotHomed);
+    if (!path_.active() && (axes_[i].phase != axis::Phase::Stop || axes_[i].mode != axis::Mode::Idle)) busy = true;
+  }
+  if (busy || sleeping_) return refuse_parts(path::Error::Busy);
+  path::Segment s;
+  s.kind = kind == c::CommandId::PathLine ? path::Kind::Line
+                                         : (kind == c::CommandId::PathArcCw ? path::Kind::ArcCw : path::Kind::ArcCcw);
+  s.start = path_.queued() > 0 ? path_.queue_end() : path::Point{axes_[0].pos, axes_[1].pos};
+  s.end = s.start;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    if (ids[i] != kind) continue;
+    const axis::Converted t = axis::um_to_usteps(path_um_[i], derived_.mech, axis::Round::Nearest);
+    if (t.error != axis::Error::None) return refuse_parts(path::Error::OutOfLimits);
+    s.end[i] = t.value;
+  }
+  if (s.kind != path::Kind::Line) {
+    if (!centre_set_) return refuse_parts(path::Error::NoCentre);
+    for (std::size_t i = 0; i < kAxes; ++i) {
+      const axis::Converted o = axis::um_to_usteps(centre_um_[i], derived_.mech, axis::Round::Nearest);
+      if (o.error != axis::Error::None) return refuse_parts(path::Error::OutOfLimits);
+      s.centre[i] = o.value;
+    }
+  }
+  const path::Error e = path_.add(s, path_limits());
+  if (e != path::Error::None) return refuse_parts(e);
+  if (s.kind != path::Kind::Line) centre_set_ = false;
+  // The saved step counter stops being valid before the first step (as for every motion).
+  if (!motion_permitted()) {
+    path_.clear();
+    return refuse_parts(path::Error::Busy);
+  }
+  for (std::size_t i = 0; i < kAxes; ++i) event_[i] = AxisEvent::None;
+}
+
+void Board::step_path(bool alive) {
+  // A lost link, a closed session, a block or sleep stop the path along its own S-curve: a
+  // controlled stop (docs/cnc.md "Stops"), as the axis core brakes a jog.
+  if (!path_.stopping()) {
+    if (!alive || !session_open_) {
+      path_stop_event_ = AxisEvent::LinkLost;
+      path_.stop();
+    } else if (block_ != Block::None || sleeping_) {
+      path_stop_event_ = AxisEvent::StoppedByUser;
+      path_.stop();
+    }
+  }
+  path::TickIn ti;
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    ti.toward_min_blocked[i] = in_.endstop_min[i] != 0 || axes_[i].latch_min != 0;
+    ti.toward_max_blocked[i] = in_.endstop_max[i] != 0 || axes_[i].latch_max != 0;
+  }
+  const bool was_stopping = path_.stopping();
+  path::Point pos{axes_[0].pos, axes_[1].pos};
+  path::Halt halt = path::Halt::None;
+  const path::TickOut o = path_.tick(ti, pos, halt);
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    axis::State& s = axes_[i];
+    s.pos = pos[i];
+    s.dir = o.dir[i];
+    s.v = halt != path::Halt::None ? 0 : o.v_fine[i];
+    s.phase = s.v > 0 ? phase_of(path_.profile_segment(), path_.stopping()) : axis::Phase::Stop;
+    s.mode = axis::Mode::Idle;
+    s.target = s.pos;
+    s.frac = 0;
+    // The endstop latches as the axis core keeps them (motion.md §4): set by the switch, cleared
+    // by a step away from it with the switch off.
+    if (in_.endstop_min[i] != 0) s.latch_min = 1;
+    if (in_.endstop_max[i] != 0) s.latch_max = 1;
+    if (o.steps[i] > 0 && o.dir[i] > 0 && in_.endstop_min[i] == 0) s.latch_min = 0;
+    if (o.steps[i] > 0 && o.dir[i] < 0 && in_.endstop_max[i] == 0) s.latch_max = 0;
+    MotorOutput& m = motor_[i];
+    m.dir = o.dir[i];
+    m.steps = o.steps[i];
+    m.step_hz = static_cast<std::uint32_t>(s.v / axis::kSpeedScale);
+    m.enable = true;
+    if (hw_.motor != nullptr) hw_.motor(hw_.ctx, static_cast<Axis>(i), m);
+    if (halt == path::Halt::Endstop) {
+      event_[i] = AxisEvent::Endstop;
+    } else if (o.finished_chain && !path_.active()) {
+      event_[i] = was_stopping ? path_stop_event_ : AxisEvent::Reached;
+    }
+  }
+  if (!path_.active()) path_stop_event_ = AxisEvent::None;
+}
+
+}  // namespace ap::board

@@ -1,0 +1,168 @@
+// The coordinated path on the board core (docs/cnc.md "On the board"): frames in, both axes
+// out, the echo's events, the refusals, the stops, with the safety monitor (models/safety) on
+// every tick.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "board_rig.hpp"
+#include "models/safety/board_monitor.hpp"
+#include "protocol/codec/commands.hpp"
+
+namespace {
+
+using ap::board::Axis;
+using ap::board::AxisEvent;
+using ap::board::test::Rig;
+using C = ap::codec::CommandId;
+using S = ap::codec::EchoStatus;
+
+struct PathRig {
+  Rig r;
+  ap::model::safety::BoardMonitor mon;
+  std::vector<ap::model::safety::Violation> violations;
+
+  PathRig() {
+    // Both axes know their position from their encoders (docs/board.md "Power-up").
+    r.in.encoder[0] = {0, 0, 1};
+    r.in.encoder[1] = {0, 0, 1};
+    r.boot();
+    mon.booted(*r.board);
+  }
+  void tick(int n = 1) {
+    for (int i = 0; i < n; ++i) {
+      mon.before_tick(*r.board);
+      r.tick();
+      mon.after_tick(*r.board, violations);
+    }
+  }
+  // Frames every 100 ms keep the link watchdog fed (thesis §6.2), until the path is done.
+  void run_until_idle(int max_ms = 60000) {
+    for (int t = 0; t < max_ms && r.board->path().active(); t += 100) {
+      r.send(C::Nop, 0, C::Nop, 0);
+      tick(100);
+    }
+  }
+  std::int32_t um(Axis a) const { return r.board->position_um(a); }
+  S status(Axis a) const {
+    const auto e = r.last_echo();
+    return e ? (a == Axis::X ? e->x.status : e->y.status) : S::Idle;
+  }
+};
+
+TEST(BoardPath, ALineFrameMovesBothAxesToItsEnd) {
+  PathRig p;
+  p.r.send(C::PathLine, 30000, C::PathLine, 10000);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  p.tick(2);
+  EXPECT_TRUE(p.r.board->path().active());
+  p.run_until_idle();
+  EXPECT_EQ(p.um(Axis::X), 30000);
+  EXPECT_EQ(p.um(Axis::Y), 10000);
+  EXPECT_EQ(p.r.board->axis_event(Axis::X), AxisEvent::Reached);
+  EXPECT_EQ(p.r.board->axis_event(Axis::Y), AxisEvent::Reached);
+  p.r.send(C::Nop, 0, C::Nop, 0);
+  p.tick();
+  EXPECT_EQ(p.status(Axis::X), S::TargetReached);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
+TEST(BoardPath, AnArcNeedsItsCentreFrame) {
+  PathRig p;
+  p.r.send(C::PathArcCw, 20000, C::PathArcCw, 0);
+  p.tick();
+  EXPECT_EQ(p.r.board->path_error(), ap::path::Error::NoCentre);
+  EXPECT_EQ(p.status(Axis::X), S::CommandRefused);
+  EXPECT_FALSE(p.r.board->path().active());
+  // A half circle from (0,0) over (10,10) to (20,0) mm: centre 10 mm to the right.
+  p.r.send(C::PathLine, 0, C::PathLine, 10000);  // to (0, 10) mm first
+  p.r.send(C::PathCentre, 10000, C::PathCentre, 10000);
+  p.r.send(C::PathArcCw, 20000, C::PathArcCw, 10000);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  p.tick(4);
+  p.run_until_idle();
+  EXPECT_EQ(p.um(Axis::X), 20000);
+  EXPECT_EQ(p.um(Axis::Y), 10000);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
+TEST(BoardPath, NotHomedIsRefusedAndNothingMoves) {
+  Rig r;
+  r.boot();
+  r.send(C::PathLine, 1000, C::PathLine, 1000);
+  r.tick();
+  EXPECT_EQ(r.board->path_error(), ap::path::Error::NotHomed);
+  const auto e = r.last_echo();
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->x.status, S::CommandRefused);
+  EXPECT_EQ(e->x.data, static_cast<std::int32_t>(C::PathLine));
+  EXPECT_FALSE(r.board->path().active());
+}
+
+TEST(BoardPath, AStopBrakesAlongThePathAndSaysStopped) {
+  PathRig p;
+  p.r.send(C::PathLine, 150000, C::PathLine, 50000);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  for (int k = 0; k < 15; ++k) {
+    p.r.send(C::Nop, 0, C::Nop, 0);
+    p.tick(100);
+  }
+  ASSERT_TRUE(p.r.board->path().active());
+  p.r.send(C::Stop, 0, C::Nop, 0);
+  p.tick();
+  EXPECT_TRUE(p.r.board->path().stopping());
+  p.run_until_idle();
+  EXPECT_LT(p.um(Axis::X), 150000);
+  EXPECT_EQ(p.r.board->axis_event(Axis::X), AxisEvent::StoppedByUser);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
+TEST(BoardPath, ALostLinkStopsThePath) {
+  PathRig p;
+  p.r.send(C::PathLine, 150000, C::PathLine, 0);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  p.tick(6000);  // silence: the watchdog expires after three command periods (docs/motion.md §7)
+  EXPECT_FALSE(p.r.board->path().active());
+  EXPECT_LT(p.um(Axis::X), 150000);
+  EXPECT_EQ(p.r.board->axis_event(Axis::X), AxisEvent::LinkLost);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
+TEST(BoardPath, TheAxesOwnCommandsAreRefusedWhileAPathRuns) {
+  PathRig p;
+  p.r.send(C::PathLine, 100000, C::PathLine, 0);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  p.tick(2);
+  p.r.send(C::Nop, 0, C::Nop, 0);
+  p.tick(100);
+  p.r.send(C::Goto, 5000, C::Jog, 1);
+  p.tick();
+  const auto e = p.r.last_echo();
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->x.status, S::CommandRefused);
+  EXPECT_EQ(e->x.data, static_cast<std::int32_t>(C::Goto));
+  EXPECT_EQ(e->y.status, S::CommandRefused);
+  p.r.send(C::SetFastSpeed, 1000, C::Nop, 0);
+  p.tick();
+  EXPECT_EQ(p.r.last_echo()->x.status, S::CommandRefused);
+  p.run_until_idle();
+  EXPECT_EQ(p.um(Axis::X), 100000);
+}
+
+TEST(BoardPath, AnEndstopHaltsThePathAndSaysEndstop) {
+  PathRig p;
+  p.r.send(C::PathLine, 100000, C::PathLine, 0);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  for (int k = 0; k < 5; ++k) {
+    p.r.send(C::Nop, 0, C::Nop, 0);
+    p.tick(100);
+  }
+  p.r.in.endstop_max[0] = 1;
+  p.tick();
+  EXPECT_FALSE(p.r.board->path().active());
+  EXPECT_EQ(p.r.board->axis_event(Axis::X), AxisEvent::Endstop);
+  EXPECT_EQ(p.r.board->motor_output(Axis::X).steps, 0);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
+}  // namespace
