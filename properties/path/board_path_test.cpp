@@ -42,6 +42,7 @@ struct PathRig {
       r.send(C::Nop, 0, C::Nop, 0);
       tick(100);
     }
+    EXPECT_FALSE(r.board->path().active()) << "the path did not finish in " << max_ms << " ms";
   }
   std::int32_t um(Axis a) const { return r.board->position_um(a); }
   S status(Axis a) const {
@@ -162,6 +163,53 @@ TEST(BoardPath, AnEndstopHaltsThePathAndSaysEndstop) {
   EXPECT_FALSE(p.r.board->path().active());
   EXPECT_EQ(p.r.board->axis_event(Axis::X), AxisEvent::Endstop);
   EXPECT_EQ(p.r.board->motor_output(Axis::X).steps, 0);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
+TEST(BoardPath, TheThesisMachineHalfCircleKeepsEveryAxisProperty) {
+  // Full steps (20 steps/mm): the minor axis's first step at the top of an arc comes when it
+  // already moves at a few % of the path speed, above the start speed (10 steps/s): DIR must
+  // turn with the speed, not with that step (docs/cnc.md "Axis speeds").
+  PathRig p;
+  p.r.send(C::SetPitch, 10000, C::Nop, 0);
+  p.r.send(C::SetMicrosteps, 1, C::Nop, 0);
+  p.r.send(C::SetFastSpeed, 50000, C::Nop, 0);
+  p.r.send(C::SetAccel, 40000, C::Nop, 0);
+  p.tick(2);
+  p.r.send(C::PathLine, 100000, C::PathLine, 150000);
+  p.r.send(C::PathCentre, 100000, C::PathCentre, 100000);
+  p.r.send(C::PathArcCw, 100000, C::PathArcCw, 50000);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  p.tick(2);
+  p.run_until_idle();
+  EXPECT_EQ(p.um(Axis::X), 100000);
+  EXPECT_EQ(p.um(Axis::Y), 50000);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
+TEST(BoardPath, StepPulsesAddUpToTheCounterOnTinyCircles) {
+  // A circle of 20 microsteps at 16 moves per tick reverses each axis inside a tick: the STEP
+  // pulses of a tick share one DIR, so every pulse must still count (docs/cnc.md "Reversal").
+  PathRig p;
+  p.r.send(C::PathLine, 10000, C::PathLine, 10000);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  p.tick(2);
+  p.run_until_idle();
+  p.r.steps_total = {p.r.ax(Axis::X).pos, p.r.ax(Axis::Y).pos};
+  // Centre 12.5 um to the right: 20 usteps at 1600 usteps/mm; a full circle (end = start).
+  p.r.send(C::PathCentre, 10013, C::PathCentre, 10000);
+  p.r.send(C::PathArcCcw, 10000, C::PathArcCcw, 10000);
+  p.r.send(C::PathCentre, 10013, C::PathCentre, 10000);
+  p.r.send(C::PathArcCcw, 10000, C::PathArcCcw, 10000);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  for (int t = 0; t < 3000; ++t) {
+    if (t % 100 == 0) p.r.send(C::Nop, 0, C::Nop, 0);
+    p.tick();
+    ASSERT_EQ(p.r.steps_total[0], p.r.ax(Axis::X).pos) << "tick " << t;
+    ASSERT_EQ(p.r.steps_total[1], p.r.ax(Axis::Y).pos) << "tick " << t;
+  }
+  EXPECT_FALSE(p.r.board->path().active());
+  EXPECT_EQ(p.um(Axis::X), 10000);
   EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
 }
 
