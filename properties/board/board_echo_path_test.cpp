@@ -117,10 +117,10 @@ TEST(EchoModelPath, LineReachesItsEnd) {
   EXPECT_TRUE(b.bad.empty()) << b.report();
 }
 
-// A quarter arc, counter-clockwise: start (50, 101) mm, centre offset (0, +2) mm, end (52, 103).
+// A quarter arc, counter-clockwise: start (50, 101) mm, centre (50, 103) mm, end (52, 103).
 TEST(EchoModelPath, ArcReachesItsEnd) {
   PathBench b;
-  b.send(CommandId::PathCentre, 0, CommandId::PathCentre, 2000);
+  b.send(CommandId::PathCentre, 50000, CommandId::PathCentre, 103000);
   b.send(CommandId::PathArcCcw, 52000, CommandId::PathArcCcw, 103000);
   b.send(CommandId::PathEnd, 0);
   bool moved = false;
@@ -143,7 +143,7 @@ TEST(EchoModelPath, ArcReachesItsEnd) {
 TEST(EchoModelPath, ChainOfLineArcAndSingleAxisLine) {
   PathBench b;
   b.send(CommandId::PathLine, 51000, CommandId::Nop, 0);  // X only: Y keeps 101 000
-  b.send(CommandId::PathCentre, 0, CommandId::PathCentre, -1000);
+  b.send(CommandId::PathCentre, 51000, CommandId::PathCentre, 100000);
   b.send(CommandId::PathArcCw, 52000, CommandId::PathArcCw, 100000);
   b.send(CommandId::PathEnd, 0);
   b.run_to_rest();
@@ -166,10 +166,12 @@ TEST(EchoModelPath, RefusalsCarryTheCommandId) {
     EXPECT_TRUE(u.bad.empty()) << u.report();
   }
   PathBench b;
-  // Mixed parts: a centre and a segment; a line and an arc.
+  // Mixed parts: a centre and a segment; a line and an arc; a centre in one part only.
   b.send(CommandId::PathCentre, 0, CommandId::PathLine, 103000);
   EXPECT_TRUE(refused(b.last.x, CommandId::PathCentre));
   EXPECT_TRUE(refused(b.last.y, CommandId::PathLine));
+  b.send(CommandId::Nop, 0, CommandId::PathCentre, 103000);
+  EXPECT_TRUE(refused(b.last.y, CommandId::PathCentre));
   b.send(CommandId::PathLine, 52000, CommandId::PathArcCw, 103000);
   EXPECT_TRUE(refused(b.last.x, CommandId::PathLine));
   EXPECT_TRUE(refused(b.last.y, CommandId::PathArcCw));
@@ -184,18 +186,18 @@ TEST(EchoModelPath, RefusalsCarryTheCommandId) {
   b.send(CommandId::Nop, 0, CommandId::PathLine, 200001);
   EXPECT_TRUE(refused(b.last.y, CommandId::PathLine));
   // Zero radius: the centre is the start.
-  b.send(CommandId::PathCentre, 0, CommandId::PathCentre, 0);
+  b.send(CommandId::PathCentre, 50000, CommandId::PathCentre, 101000);
   EXPECT_EQ(b.last.x.status, EchoStatus::Idle);  // a centre alone is stored
   b.send(CommandId::PathArcCcw, 52000, CommandId::PathArcCcw, 103000);
   EXPECT_TRUE(refused(b.last.x, CommandId::PathArcCcw));
   // Radius mismatch: start radius 2 mm, end radius 2.1 mm (> max(2 steps, 0.1 %)).
-  b.send(CommandId::PathCentre, 0, CommandId::PathCentre, 2000);
+  b.send(CommandId::PathCentre, 50000, CommandId::PathCentre, 103000);
   b.send(CommandId::PathArcCcw, 52100, CommandId::PathArcCcw, 103000);
   EXPECT_TRUE(refused(b.last.x, CommandId::PathArcCcw));
   EXPECT_TRUE(refused(b.last.y, CommandId::PathArcCcw));
   // A swept extreme outside: centre (20, 101) mm, r = 30 mm, ccw from 0 to 270 deg passes
   // 180 deg at x = -10 mm although both ends are inside.
-  b.send(CommandId::PathCentre, -30000, CommandId::PathCentre, 0);
+  b.send(CommandId::PathCentre, 20000, CommandId::PathCentre, 101000);
   b.send(CommandId::PathArcCcw, 20000, CommandId::PathArcCcw, 71000);
   EXPECT_TRUE(refused(b.last.x, CommandId::PathArcCcw));
   // The same arc clockwise (0 to 270 deg the short way) passes only 270 deg: accepted.
@@ -299,16 +301,16 @@ TEST(EchoModelPath, LostLinkStopsThePath) {
 
 // A goto stored earlier in the same frame is superseded by the segment (docs/echo-model.md
 // "The coordinated path"): no refusal, the path runs, the goto never does.
-TEST(EchoModelPath, SegmentSupersedesAMotionCommandOfItsFrame) {
+TEST(EchoModelPath, ASegmentBesideAMotionCommandIsRefusedAsMixed) {
+  // docs/cnc.md "Refusals": the segment is refused (MixedParts), the goto runs as it would alone.
   PathBench b;
   b.send(CommandId::Goto, 1000, CommandId::PathLine, 103000);
   EXPECT_NE(b.last.x.status, EchoStatus::CommandRefused);
-  EXPECT_NE(b.last.y.status, EchoStatus::CommandRefused);
-  b.send(CommandId::PathEnd, 0);
+  EXPECT_EQ(b.last.y.status, EchoStatus::CommandRefused);
+  EXPECT_EQ(b.last.y.data, static_cast<std::int32_t>(CommandId::PathLine));
   b.run_to_rest();
   b.nop();
-  EXPECT_EQ(b.last.x.data, 50000);
-  EXPECT_EQ(b.last.y.data, 103000);
+  EXPECT_EQ(b.last.x.data, 1000);
   EXPECT_TRUE(b.bad.empty()) << b.report();
 }
 

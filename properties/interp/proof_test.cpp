@@ -64,7 +64,7 @@ RC_GTEST_PROP(InterpProof, StatedStepIsTheCoresOnRandomStates, ()) {
 
 RC_GTEST_PROP(InterpProof, StatedStepFollowsWholeLines, ()) {
   // Line::next() on a 3-axis line moves axis i exactly when the stated step says so, from err = 0.
-  const std::array<int32_t, 3> d{*rc::gen::inRange(-300, 301), *rc::gen::inRange(-300, 301), *rc::gen::inRange(-300, 301)};
+  const std::array<int32_t, 3> d{*rc::gen::inRange(-150, 151), *rc::gen::inRange(-150, 151), *rc::gen::inRange(-150, 151)};
   Line l{d};
   const auto n = static_cast<int32_t>(l.moves());
   std::array<int32_t, 3> err{0, 0, 0};

@@ -3,6 +3,7 @@
 // every tick.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "board_rig.hpp"
@@ -143,7 +144,7 @@ TEST(BoardPath, TheAxesOwnCommandsAreRefusedWhileAPathRuns) {
   EXPECT_EQ(e->x.status, S::CommandRefused);
   EXPECT_EQ(e->x.data, static_cast<std::int32_t>(C::Goto));
   EXPECT_EQ(e->y.status, S::CommandRefused);
-  p.r.send(C::SetFastSpeed, 1000, C::Nop, 0);
+  p.r.send(C::SetFastSpeed, 2000, C::Nop, 0);  // not below the homing speed (docs/storage.md)
   p.tick();
   EXPECT_EQ(p.r.last_echo()->x.status, S::CommandRefused);
   p.run_until_idle();
@@ -188,28 +189,44 @@ TEST(BoardPath, TheThesisMachineHalfCircleKeepsEveryAxisProperty) {
 }
 
 TEST(BoardPath, StepPulsesAddUpToTheCounterOnTinyCircles) {
-  // A circle of 20 microsteps at 16 moves per tick reverses each axis inside a tick: the STEP
-  // pulses of a tick share one DIR, so every pulse must still count (docs/cnc.md "Reversal").
+  // Fine mechanics (0.2 mm/rev, 256 microsteps: 256 usteps/um) make the thesis's jerk large in
+  // microsteps, so ten tangent circles of 1 um (256 usteps) run at about 35 moves per tick
+  // (the centripetal cap sqrt(a r)) and each axis reverses inside a tick: the STEP pulses of a tick share one DIR, so every pulse must still
+  // count (docs/cnc.md "Reversal inside a tick").
   PathRig p;
-  p.r.send(C::PathLine, 10000, C::PathLine, 10000);
+  // Speeds first: each set must convert within the axis ranges (<= 1e6 usteps/s, 1e7 usteps/s^2).
+  p.r.send(C::SetSlowSpeed, 500, C::Nop, 0);
+  p.r.send(C::SetFastSpeed, 2000, C::Nop, 0);  // not below the homing speed (docs/storage.md)
+  p.r.send(C::SetAccel, 19000, C::Nop, 0);
+  p.r.send(C::SetPitch, 200, C::Nop, 0);
+  p.r.send(C::SetMicrosteps, 256, C::Nop, 0);
+  p.tick(2);
+  ASSERT_EQ(p.r.board->mechanics().microsteps, 256);
+  ASSERT_EQ(p.r.board->mechanics().pitch_um, 200);
+  p.r.send(C::PathLine, 1000, C::PathLine, 1000);
   p.r.send(C::PathEnd, 0, C::Nop, 0);
   p.tick(2);
   p.run_until_idle();
+  ASSERT_EQ(p.r.ax(Axis::X).pos, 256000);
   p.r.steps_total = {p.r.ax(Axis::X).pos, p.r.ax(Axis::Y).pos};
-  // Centre 12.5 um to the right: 20 usteps at 1600 usteps/mm; a full circle (end = start).
-  p.r.send(C::PathCentre, 10013, C::PathCentre, 10000);
-  p.r.send(C::PathArcCcw, 10000, C::PathArcCcw, 10000);
-  p.r.send(C::PathCentre, 10013, C::PathCentre, 10000);
-  p.r.send(C::PathArcCcw, 10000, C::PathArcCcw, 10000);
+  // Centre 1 um to the right; ten full circles (end = start), all tangent: one chain.
+  for (int k = 0; k < 10; ++k) {
+    p.r.send(C::PathCentre, 1001, C::PathCentre, 1000);
+    p.r.send(C::PathArcCcw, 1000, C::PathArcCcw, 1000);
+    if (k % 2 == 1) p.tick();
+  }
   p.r.send(C::PathEnd, 0, C::Nop, 0);
+  int max_steps = 0;
   for (int t = 0; t < 3000; ++t) {
     if (t % 100 == 0) p.r.send(C::Nop, 0, C::Nop, 0);
     p.tick();
+    max_steps = std::max(max_steps, p.r.board->motor_output(Axis::X).steps);
     ASSERT_EQ(p.r.steps_total[0], p.r.ax(Axis::X).pos) << "tick " << t;
     ASSERT_EQ(p.r.steps_total[1], p.r.ax(Axis::Y).pos) << "tick " << t;
   }
   EXPECT_FALSE(p.r.board->path().active());
-  EXPECT_EQ(p.um(Axis::X), 10000);
+  EXPECT_EQ(p.r.ax(Axis::X).pos, 256000);
+  EXPECT_GE(max_steps, 25);  // many moves per tick: reversals inside a tick do happen
   EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
 }
 

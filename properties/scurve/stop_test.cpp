@@ -65,7 +65,7 @@ RC_GTEST_PROP(ScurveStop, AnywhereEndsAtRestNotPastTheEnd, ()) {
 }
 
 TEST(ScurveStop, EveryTickOfTheThesisShortSegment) {
-  // Exhaustive over the 433 stop instants of a short thesis path (200 moves: 4 x 292 ticks).
+  // Exhaustive over the 2521 stop instants of a short thesis path (200 moves: 4 x 630 ticks).
   const auto r = plan(200, kThesis);
   ASSERT_EQ(r.error, Error::None);
   for (uint64_t at = 0; at <= r.plan.total_ticks; ++at) {

@@ -263,7 +263,7 @@ void Board::handle(const frame::RawCommandFramer::Event& e) {
   ++counters_.dispatched_frames;
   if (r.x == HandlerStatus::Refused) ++counters_.refused_parts;
   if (r.y == HandlerStatus::Refused) ++counters_.refused_parts;
-  commit_path_frame();
+  commit_path_frame(e.frame);
   frame_this_cycle_ = true;
   echoes_[echo_count_++] = PendingEcho{false, {}, e.frame.seq, e.frame.subs, false};
 }

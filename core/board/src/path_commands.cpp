@@ -57,7 +57,7 @@ HandlerStatus Board::on_path_end(void* ctx, Axis, std::int32_t) {
 }
 
 // After a frame's dispatch: its path parts become the next arc's centre or one segment.
-void Board::commit_path_frame() {
+void Board::commit_path_frame(const frame::CommandFrame& f) {
   const std::array<c::CommandId, kAxes> ids = path_id_;
   path_id_ = {c::CommandId::Nop, c::CommandId::Nop};
   const auto refuse_parts = [&](path::Error e) {
@@ -72,6 +72,15 @@ void Board::commit_path_frame() {
   const bool segment = is_segment(ids[0]) || is_segment(ids[1]);
   if (!centre && !segment) return;
   if (centre && segment) return refuse_parts(path::Error::MixedParts);  // one frame, one meaning
+  // A segment beside an axis's own motion command (or a stop) would leave one of the two
+  // unanswered: the frame is refused as mixed, the other part runs as it would alone.
+  for (const frame::AxisCommand* part : {&f.x, &f.y}) {
+    const c::CommandId id = part->id;
+    if (segment && (id == c::CommandId::Stop || id == c::CommandId::Jog || id == c::CommandId::Goto ||
+                    id == c::CommandId::Move || id == c::CommandId::Home)) {
+      return refuse_parts(path::Error::MixedParts);
+    }
+  }
   if (centre) {
     // Both parts carry the centre's absolute coordinates (docs/cnc.md).
     if (ids[0] != c::CommandId::PathCentre || ids[1] != c::CommandId::PathCentre) return refuse_parts(path::Error::MixedParts);
@@ -90,6 +99,10 @@ void Board::commit_path_frame() {
   for (std::size_t i = 0; i < kAxes; ++i) {
     if (axes_[i].homed == 0) return refuse_parts(path::Error::NotHomed);
     if (!path_.active() && (axes_[i].phase != axis::Phase::Stop || axes_[i].mode != axis::Mode::Idle)) busy = true;
+    // A motion command taken earlier in this tick is stored, not yet applied: the segment would
+    // silently replace it, so the segment is the one refused.
+    const axis::CmdKind k = pending_[i].kind;
+    if (k == axis::CmdKind::Jog || k == axis::CmdKind::MoveAbs || k == axis::CmdKind::MoveRel || k == axis::CmdKind::Home) busy = true;
   }
   if (busy || sleeping_) return refuse_parts(path::Error::Busy);
   path::Segment s;

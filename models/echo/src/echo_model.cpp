@@ -49,6 +49,12 @@ bool power_of_two(std::int32_t v) { return v > 0 && (v & (v - 1)) == 0; }
 constexpr std::int64_t kPathMaxDelta = std::int64_t{1} << 24;
 constexpr std::int64_t kPathMaxOffset = std::int64_t{1} << 20;
 constexpr std::uint32_t kPathQueue = 16;
+// docs/cnc.md "Speeds": the jerk is the thesis's J = 20 mm/s^3 (seed-003.md §5.3.1), converted
+// with the mechanics; v_max, a_max and J must lie in scurve::Limits' ranges (BadLimits):
+// v 1 .. 100 000 moves/s, a >= 1, J 1 .. 1e9, J <= 1000 a, J <= 1e6 v.
+constexpr std::int64_t kPathJerkUm = 20000;
+constexpr std::int64_t kPathMaxVelocity = 100000;
+constexpr std::int64_t kPathMaxJerk = 1000000000;
 
 std::int64_t isqrt_floor(std::int64_t v) {  // v >= 0
   auto r = static_cast<std::int64_t>(std::sqrt(static_cast<double>(v)));
@@ -508,14 +514,24 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
   }
   const int kinds = int{line} + int{cw} + int{ccw};
   if (kinds > 1 || (centre && kinds > 0)) return "mixed parts";  // MixedParts
+  // cnc.md "Refusals": a centre frame without both parts is MixedParts too.
+  if (centre && (f.x.id != CommandId::PathCentre || f.y.id != CommandId::PathCentre)) return "centre without both parts";
   if (centre) return nullptr;  // a centre is only stored (decision, docs/echo-model.md)
+  // cnc.md "Refusals": a segment beside a motion command or a stop is MixedParts.
+  for (const auto* q : part) {
+    if (q->id == CommandId::Stop || q->id == CommandId::Jog || q->id == CommandId::Goto || q->id == CommandId::Move ||
+        q->id == CommandId::Home) {
+      return "a segment beside a motion command";
+    }
+  }
   // A motion command accepted earlier in this cycle is only stored: the segment supersedes it
   // (docs/board.md "One cycle"; supersede()), so the axes count as the axis core knows them.
   const auto known = [&](std::size_t a) -> const Ax& { return ax_[a].started_now ? at_tick_start_[a] : ax_[a]; };
   if (!known(0).homed || !known(1).homed) return "not homed";
   if (sleeping_) return "sleeping";
   for (std::size_t a = 0; a < kAxes; ++a) {
-    if (known(a).act != Activity::Idle) return "an axis moves on its own";  // Busy
+    // Busy: moving on its own, or a motion command accepted earlier in this tick (docs/cnc.md).
+    if (ax_[a].started_now || known(a).act != Activity::Idle) return "an axis moves on its own";
   }
   if (path_.running && path_.stop != PathStop::None) return "a stop is running";  // Stopping
   if ((cw || ccw) && !path_.centre_set) return "arc without a centre";             // NoCentre
@@ -538,9 +554,9 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
   } else {
     std::array<std::int64_t, kAxes> c{};
     for (std::size_t a = 0; a < kAxes; ++a) {
-      const std::int64_t off = to_usteps(path_.centre_um[a]);
-      if (std::llabs(off) > kPathMaxOffset) return "too long";
-      c[a] = start[a] + off;
+      // cnc.md step 2: the centre's absolute position in um, converted like an end.
+      c[a] = to_usteps(path_.centre_um[a]);
+      if (std::llabs(c[a] - start[a]) > kPathMaxOffset) return "too long";
     }
     if (c == start || c == e) return "zero radius";
     const auto sq = [](std::int64_t v) { return v * v; };
@@ -549,11 +565,14 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
     // max(2 steps, 0.1 % of r): for integers |rs - re| > r/1000 exactly when > floor(r/1000).
     const std::int64_t tol = rs / 1000 > 2 ? rs / 1000 : 2;
     if (std::llabs(rs - re) > tol) return "radius mismatch";
-    // Swept extremes: radius + 2 steps along each axis direction the arc passes (in double).
+    // Swept extremes along each axis direction the arc passes (in double): c +- k with k the
+    // largest integer with k - 1/2 < r, r the exact start radius in steps (cnc.md "Refusals":
+    // every raster point is within 1/2 step of the circle).
     const double a0 = std::atan2(static_cast<double>(start[1] - c[1]), static_cast<double>(start[0] - c[0]));
     const double a1 = std::atan2(static_cast<double>(e[1] - c[1]), static_cast<double>(e[0] - c[0]));
     const bool full = e == start;
-    const double reach = static_cast<double>(rs) + 2.0;
+    const double r_exact = std::sqrt(static_cast<double>(sq(start[0] - c[0]) + sq(start[1] - c[1])));
+    const double reach = std::ceil(r_exact + 0.5) - 1.0;
     constexpr double kHalfPi = 1.57079632679489661923;
     for (int k = 0; k < 4; ++k) {
       if (!arc_passes(a0, a1, k * kHalfPi, ccw, full)) continue;
@@ -562,6 +581,12 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
       if (extreme > static_cast<double>(limit_max(a)) || extreme < static_cast<double>(limit_min(a))) {
         return "swept extreme outside the soft limits";
       }
+    }
+  }
+  {
+    const std::int64_t v = to_usteps(p_.fast), acc = to_usteps(p_.accel), j = to_usteps(kPathJerkUm);
+    if (v < 1 || v > kPathMaxVelocity || acc < 1 || j < 1 || j > kPathMaxJerk || j > 1000 * acc || j > 1000000 * v) {
+      return "speed, acceleration or jerk outside scurve's ranges";  // BadLimits
     }
   }
   if (path_.queued + path_.added >= kPathQueue) return "queue full";
@@ -581,10 +606,9 @@ void EchoModel::path_frame(const frame::CommandFrame& f) {
     }
     return;
   }
-  if (f.x.id == CommandId::PathCentre || f.y.id == CommandId::PathCentre) {
-    // I on X, J on Y; a part that carries no centre gives 0 (G-code: an omitted I or J is 0).
+  if (f.x.id == CommandId::PathCentre) {  // both parts carry it (path_verdict)
     path_.centre_set = true;
-    for (std::size_t a = 0; a < kAxes; ++a) path_.centre_um[a] = part[a]->id == CommandId::PathCentre ? part[a]->data : 0;
+    for (std::size_t a = 0; a < kAxes; ++a) path_.centre_um[a] = part[a]->data;
     return;
   }
   if (f.x.id != CommandId::PathLine && f.y.id != CommandId::PathLine) path_.centre_set = false;  // used by its arc

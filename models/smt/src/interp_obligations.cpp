@@ -41,9 +41,9 @@ struct Axis {
   z3::expr line() const { return z3::sge(n, v(1)) && z3::sle(n, v(kMax)) && z3::sge(a, v(0)) && z3::sle(a, n); }
   z3::expr err_range(const z3::expr& e) const { return z3::sge(e, -n) && z3::slt(e, n); }
   // 2*(k*a - n*y), exactly: the operands are in [0, 2^24], the products < 2^48, in 64 bits.
-  z3::expr exact(const z3::expr& kk, const z3::expr& yy) const {
-    const auto w = [](const z3::expr& x) { return z3::zext(x, 32); };
-    return c.bv_val(2, 64) * (w(kk) * w(a) - w(n) * w(yy));
+  z3::expr exact(const z3::expr& kk, const z3::expr& yy) const { return exact64(z3::zext(kk, 32), z3::zext(yy, 32)); }
+  z3::expr exact64(const z3::expr& kk, const z3::expr& yy) const {
+    return c.bv_val(2, 64) * (kk * z3::zext(a, 32) - z3::zext(n, 32) * yy);
   }
   // The invariant between calls: 0 <= y <= k <= n (y counts the axis's moves), err in [-n, n) and
   // err == 2*(k*a - n*y) exactly. (y <= a follows: y never falls and ends at a, exact_end.)
@@ -88,10 +88,11 @@ void add_interp_obligations(ObligationList& out) {
                    const z3::expr k2 = s.k + s.v(1);
                    const z3::expr two = c.bv_val(2, 64);
                    const z3::expr change = two * z3::zext(s.a, 32) - z3::ite(moves, two * z3::zext(s.n, 32), c.bv_val(0, 64));
-                   const z3::expr ranges = [&](const z3::expr& kk, const z3::expr& yy, const z3::expr& e) {
-                     return z3::sge(yy, s.v(0)) && z3::sle(yy, kk) && z3::sle(kk, s.n) && s.err_range(e);
-                   }(s.k, s.y, s.err);
-                   const z3::expr ranges2 = z3::sge(y2, s.v(0)) && z3::sle(y2, k2) && z3::sle(k2, s.n) && s.err_range(e2);
+                   const z3::expr ranges = z3::sge(s.y, s.v(0)) && z3::sle(s.y, s.k) && z3::sle(s.k, s.n) && s.err_range(s.err);
+                   // ... and the 32-bit k + 1 and y + s do not wrap (they equal the 64-bit sums below).
+                   const z3::expr ranges2 = z3::sge(y2, s.v(0)) && z3::sle(y2, k2) && z3::sle(k2, s.n) && s.err_range(e2) &&
+                                            z3::zext(k2, 32) == z3::zext(s.k, 32) + c.bv_val(1, 64) &&
+                                            z3::zext(y2, 32) == z3::zext(s.y, 32) + z3::ite(moves, c.bv_val(1, 64), c.bv_val(0, 64));
                    const z3::expr base = s.inv(s.v(0), s.v(0), s.v(0));
                    const z3::expr step = z3::implies(ranges && z3::slt(s.k, s.n),
                                                      ranges2 && z3::sext(e2, 32) == z3::sext(s.err, 32) + change);
@@ -99,8 +100,11 @@ void add_interp_obligations(ObligationList& out) {
                    // identity at once, but not through the decision term).
                    const z3::expr any_s = c.bool_const("s");
                    const z3::expr any_change = two * z3::zext(s.a, 32) - z3::ite(any_s, two * z3::zext(s.n, 32), c.bv_val(0, 64));
+                   const z3::expr k64 = c.bv_const("k64", 64);
+                   const z3::expr y64 = c.bv_const("y64", 64);
                    const z3::expr distributive =
-                       s.exact(k2, s.y + z3::ite(any_s, s.v(1), s.v(0))) == s.exact(s.k, s.y) + any_change;
+                       s.exact64(k64 + c.bv_val(1, 64), y64 + z3::ite(any_s, c.bv_val(1, 64), c.bv_val(0, 64))) ==
+                       s.exact64(k64, y64) + any_change;
                    return check_valid(c, z3::implies(s.line(), base && step) && distributive, ms, s.shown());
                  }});
   out.push_back({"interp.bresenham.half_step_bound",

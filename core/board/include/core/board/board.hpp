@@ -231,7 +231,7 @@ class Board {
   }
   static frame::HandlerStatus on_path_end(void*, Axis, std::int32_t);
   frame::HandlerStatus path_part(Axis a, codec::CommandId id, std::int32_t um);
-  void commit_path_frame();
+  void commit_path_frame(const frame::CommandFrame& f);
   path::Limits path_limits() const;
   void step_path(bool alive);
   static frame::AxisEcho echo_axis(void* ctx, Axis a);

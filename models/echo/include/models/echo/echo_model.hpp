@@ -1,6 +1,7 @@
 // The reference model of what the PC sees: one expected echo per frame event the board
 // handles, predicted from the documents (docs/board.md "One cycle" and "Echo content",
-// docs/protocol.md, docs/motion.md §4-§8, docs/storage.md, seed-000.md §3.6-§3.7, §4.7) and
+// docs/protocol.md, docs/motion.md §4-§8, docs/storage.md, docs/cnc.md for the coordinated
+// path, seed-000.md §3.6-§3.7, §4.7) and
 // written without reading core/board's logic. docs/echo-model.md has the decisions.
 //
 // What the model predicts by itself: the echo's seq, each axis status, the data of every
@@ -189,7 +190,7 @@ class EchoModel {
     std::uint32_t queued = 0;               // observed at the end of the last tick
     std::uint32_t added = 0;                // segments accepted in this tick
     bool centre_set = false;
-    std::array<std::int32_t, kAxes> centre_um{};  // the next arc's centre from its start (I, J)
+    std::array<std::int32_t, kAxes> centre_um{};  // the next arc's centre, absolute um
     PathStop stop = PathStop::None;         // why the running path is stopping
     bool moved = false;                     // an axis was seen moving since it was accepted
   };
