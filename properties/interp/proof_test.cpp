@@ -13,11 +13,6 @@
 #include "models/smt/modules.hpp"
 #include "models/smt/obligation.hpp"
 
-// The step terms (defined in interp_obligations.cpp; models/smt/modules.hpp does not declare them).
-namespace ap::model::smt {
-z3::expr interp_axis_step_err(z3::context& c, const z3::expr& n, const z3::expr& a, const z3::expr& err);
-z3::expr interp_axis_step_moves(z3::context& c, const z3::expr& n, const z3::expr& a, const z3::expr& err);
-}  // namespace ap::model::smt
 
 namespace {
 

@@ -37,7 +37,7 @@ case $key in
   list) readme_keys ;;
   every_command_has_a_smoke)
     known=" axisproof-gate axisproof-test axisproof-prove axisproof-fuzz axisproof-sim axisproof-frame axisproof-regs
-            axisproof-bench ci-mutate ci-nightly-fuzz ci-coverage ci-m4-build ci-fresh-machine "
+            axisproof-gcode axisproof-bench ci-mutate ci-nightly-fuzz ci-coverage ci-m4-build ci-fresh-machine "
     known=" $(echo $known) "
     n=0
     for k in $(readme_keys); do
@@ -88,6 +88,14 @@ case $key in
     expect 0 'IHOLD_IRUN' ./axisproof regs
     expect 0 '^register,address,access,field,mask,shift,width,signed' ./axisproof regs --format csv
     expect 0 'IHOLD_IRUN' ./axisproof regs decode 90 00 07 0C 03 ;;
+  axisproof-gcode)
+    # The thesis's Tab. 3 (seed-003.md §5.2): row 15 as printed there, then the program end to
+    # end over the DDS bus (docs/cnc.md) with its outputs; a line the strict dialect refuses.
+    expect 0 ' 15 +0,2 +3 +25,5 +160,5 +26 ' ./axisproof gcode --table3
+    expect 0 'scenario thesis: PASS' ./axisproof gcode scenarios/gcode/thesis.gcode --dialect thesis --out "$tmp/gcode"
+    for f in trace.csv path.csv path.svg profile.svg; do [[ -s $tmp/gcode/thesis/$f ]] || fail "gcode wrote no $f"; done
+    printf 'N1  G1 X1\n' > "$tmp/bad.gcode"
+    expect 2 'bad.gcode:1:4: BadSpacing' ./axisproof gcode "$tmp/bad.gcode" --dialect thesis ;;  # the second space
   axisproof-bench)
     # Builds the release benchmarks (what broke on a fresh clone) and lists them; the gate's
     # "benchmarks (release)" stage runs one.

@@ -10,10 +10,6 @@
 #include "models/smt/modules.hpp"
 #include "models/smt/obligation.hpp"
 
-namespace ap::model::smt {
-// Defined in scurve_obligations.cpp (the lead may move this declaration to modules.hpp).
-std::vector<z3::expr> scurve_step_terms(z3::context& c, const std::vector<z3::expr>& s, const std::vector<z3::expr>& len);
-}  // namespace ap::model::smt
 
 namespace {
 

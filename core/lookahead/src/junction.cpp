@@ -1,6 +1,7 @@
 // Corner look-ahead (junction.hpp; docs/lookahead.md explains every decision and range).
 #include "core/lookahead/junction.hpp"
 
+#include "core/intmath/isqrt.hpp"
 #include "core/lookahead/angle.hpp"
 
 namespace ap::lookahead {
@@ -28,24 +29,7 @@ Direction tangent(int64_t px, int64_t py, Turn turn) {
 constexpr int64_t cross(const Direction& a, const Direction& b) { return a.x * b.y - a.y * b.x; }
 constexpr int64_t dot(const Direction& a, const Direction& b) { return a.x * b.x + a.y * b.y; }
 
-// floor(sqrt(n)) for any uint64 (digit-by-digit, 32 rounds).
-constexpr uint64_t isqrt(uint64_t n) {
-  uint64_t root = 0;
-  uint64_t bit = uint64_t{1} << 62;
-  while (bit > n) {
-    bit >>= 2;
-  }
-  while (bit != 0) {
-    if (n >= root + bit) {
-      n -= root + bit;
-      root = (root >> 1) + bit;
-    } else {
-      root >>= 1;
-    }
-    bit >>= 2;
-  }
-  return root;
-}
+using intmath::isqrt;  // floor(sqrt(n)) for any uint64 (core/intmath)
 
 struct UnitQ30 {
   int64_t x;  // [-2^30, 2^30], within 2 LSB of the real unit vector * 2^30

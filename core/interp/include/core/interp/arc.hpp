@@ -35,6 +35,7 @@
 #include <array>
 #include <cstdint>
 
+#include "core/intmath/isqrt.hpp"
 #include "core/interp/error.hpp"
 #include "core/interp/line.hpp"
 
@@ -42,24 +43,8 @@ namespace ap::interp {
 
 enum class Turn : uint8_t { Cw, Ccw };
 
-// floor(sqrt(v)) for v < 2^62 (bit-by-bit, no floating point).
-[[nodiscard]] constexpr uint32_t isqrt64(uint64_t v) {
-  uint64_t r = 0;
-  uint64_t bit = uint64_t{1} << 62;
-  while (bit > v) {
-    bit >>= 2;
-  }
-  while (bit != 0) {
-    if (v >= r + bit) {
-      v -= r + bit;
-      r = (r >> 1) + bit;
-    } else {
-      r >>= 1;
-    }
-    bit >>= 2;
-  }
-  return static_cast<uint32_t>(r);
-}
+// floor(sqrt(v)) for v < 2^62: < 2^31, so it fits uint32_t (core/intmath).
+[[nodiscard]] constexpr uint32_t isqrt64(uint64_t v) { return static_cast<uint32_t>(intmath::isqrt(v)); }
 
 struct ArcResult;
 

@@ -8,6 +8,8 @@
 // target (never more current than asked for).
 #include <cstdint>
 
+#include "core/intmath/isqrt.hpp"
+
 #include "core/tmc2130/result.hpp"
 
 namespace ap::tmc2130::current {
@@ -34,22 +36,7 @@ constexpr std::uint32_t vfs_mv(bool vsense) {
 }
 
 namespace detail {
-constexpr std::uint64_t isqrt(std::uint64_t n) {
-  // Bitwise square root: exact floor(sqrt(n)) for all 64-bit n, no floating point.
-  std::uint64_t root = 0;
-  std::uint64_t bit = std::uint64_t{1} << 62;
-  while (bit > n) bit >>= 2;
-  while (bit != 0) {
-    if (n >= root + bit) {
-      n -= root + bit;
-      root = (root >> 1) + bit;
-    } else {
-      root >>= 1;
-    }
-    bit >>= 2;
-  }
-  return root;
-}
+using ::ap::intmath::isqrt;
 // Numerator N = (CS+1) * V_FS * 1000 (<= 32 * 320 * 1000 = 1.024e7) and denominator
 // D = 32 * (R + 20) (<= 32 * 1020 = 32640), so I = N / (D * sqrt 2) in mA.
 constexpr std::uint64_t numerator(std::uint32_t cs, bool vsense) {
