@@ -188,6 +188,35 @@ TEST(BoardPath, TheThesisMachineHalfCircleKeepsEveryAxisProperty) {
   EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
 }
 
+TEST(BoardPath, ABlockOnAnArcBrakesAlongThePathAndStaysStopped) {
+  // USB plugged mid-arc (seed-000's block): a controlled stop along the arc, where one axis's
+  // share of the speed passes zero and rises again while the path brakes; once at rest, not one
+  // step until unblocked (docs/cnc.md "Stops", models/safety).
+  PathRig p;
+  p.r.send(C::PathLine, 50000, C::PathLine, 100000);
+  p.r.send(C::PathCentre, 50000, C::PathCentre, 50000);
+  p.r.send(C::PathArcCw, 50000, C::PathArcCw, 0);
+  p.r.send(C::PathEnd, 0, C::Nop, 0);
+  p.tick(2);
+  bool on_arc = false;
+  for (int t = 0; t < 40000 && !on_arc; t += 100) {
+    p.r.send(C::Nop, 0, C::Nop, 0);
+    p.tick(100);
+    on_arc = p.um(Axis::X) > 60000;
+  }
+  ASSERT_TRUE(on_arc);
+  p.r.in.usb = true;
+  for (int t = 0; t < 5000; t += 100) {
+    p.r.send(C::Nop, 0, C::Nop, 0);
+    p.tick(100);
+  }
+  EXPECT_FALSE(p.r.board->path().active());
+  const std::int32_t x = p.um(Axis::X);
+  p.tick(500);
+  EXPECT_EQ(p.um(Axis::X), x);
+  EXPECT_TRUE(p.violations.empty()) << p.violations.front().what;
+}
+
 TEST(BoardPath, StepPulsesAddUpToTheCounterOnTinyCircles) {
   // Fine mechanics (0.2 mm/rev, 256 microsteps: 256 usteps/um) make the thesis's jerk large in
   // microsteps, so ten tangent circles of 1 um (256 usteps) run at about 35 moves per tick

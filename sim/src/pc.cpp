@@ -7,7 +7,6 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -238,11 +237,12 @@ class Pc {
       fail(where + ": cannot read G-code file " + a.word);
       return {};
     }
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ostringstream text;
+    text << in.rdbuf();
     pcgcode::Options o;
     o.dialect = a.word2 == "thesis" ? gcode::Dialect::Thesis : gcode::Dialect::Tolerant;
     try {
-      pcgcode::Program p = pcgcode::translate(text, o, a.word);
+      pcgcode::Program p = pcgcode::translate(text.str(), o, a.word);
       // The board queues 16 segments (docs/cnc.md "Refusals"); the simulated PC sends a program
       // at once, so a longer one would meet QueueFull.
       if (p.segment_frames > 16) {

@@ -2,6 +2,7 @@
 // core/board (docs/echo-model.md).
 #include "models/echo/echo_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -584,7 +585,9 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
     }
   }
   {
-    const std::int64_t v = to_usteps(p_.fast), acc = to_usteps(p_.accel), j = to_usteps(kPathJerkUm);
+    // cnc.md "Speeds": the path's v_max is the axes' fast speed, at most 100 000 moves/s.
+    const std::int64_t v = std::min<std::int64_t>(to_usteps(p_.fast), kPathMaxVelocity);
+    const std::int64_t acc = to_usteps(p_.accel), j = to_usteps(kPathJerkUm);
     if (v < 1 || v > kPathMaxVelocity || acc < 1 || j < 1 || j > kPathMaxJerk || j > 1000 * acc || j > 1000000 * v) {
       return "speed, acceleration or jerk outside scurve's ranges";  // BadLimits
     }

@@ -116,7 +116,9 @@ void BoardMonitor::check_axis(const board::Board& b, std::size_t a, bool mech_ch
     // path's own speed is what must not rise (check_path).
     if (n.v > p.v && !path_active_) bad("speed increased while blocked");
     if (x.blocked_stopped && (o.steps != 0 || n.v != 0)) bad("step while blocked after the stop");
-    x.blocked_stopped = x.blocked_stopped || n.v == 0;
+    // A braking path stops both axes together: an axis whose share of the path speed passes 0
+    // on an arc has not stopped (docs/cnc.md "Axis speeds").
+    x.blocked_stopped = x.blocked_stopped || (n.v == 0 && !b.path().active());
   }
   if (mech_changed) {
     x.tracking = false;
