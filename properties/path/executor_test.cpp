@@ -167,6 +167,9 @@ TEST(PathExecutor, RefusalsNameTheCauseAndChangeNothing) {
   EXPECT_EQ(e.add(line({0, 0}, {0, 0}), l), Error::ZeroLength);
   EXPECT_EQ(e.add(line({0, 0}, {10001, 0}), l), Error::OutOfLimits);
   EXPECT_EQ(e.add(line({0, 0}, {-1, 5}), l), Error::OutOfLimits);
+  // A carriage standing outside the limits (an encoder start below the minimum) may move back in.
+  EXPECT_EQ(e.add(line({0, -5}, {10, 10}), l), Error::None);
+  e.clear();
   EXPECT_EQ(e.add({Kind::ArcCw, {100, 100}, {300, 100}, {100, 100}}, l), Error::ArcZeroRadius);
   // End radius 2000 vs start radius 1990: more than max(2 steps, 0.1 %).
   EXPECT_EQ(e.add({Kind::ArcCw, {5000, 6000}, {5000, 2010}, {5000, 4000}}, l), Error::ArcRadiusMismatch);

@@ -93,10 +93,10 @@ Point Executor::queue_end() const { return count_ == 0 ? Point{} : at(count_ - 1
 Error Executor::add(const Segment& s, const Limits& lim) {
   if (status_ == Status::Stopping) return Error::Stopping;
   if (count_ == kQueue) return Error::QueueFull;
+  // The end must lie inside the soft limits, the start need not: a carriage that stands outside
+  // (an encoder start below the minimum) may move back in (docs/cnc.md "Refusals").
   for (std::size_t a = 0; a < kAxes; ++a) {
-    if (!inside(s.start[a], lim.soft_min[a], lim.soft_max[a]) || !inside(s.end[a], lim.soft_min[a], lim.soft_max[a])) {
-      return Error::OutOfLimits;
-    }
+    if (!inside(s.end[a], lim.soft_min[a], lim.soft_max[a])) return Error::OutOfLimits;
   }
   Queued q;
   q.seg = s;
