@@ -104,6 +104,9 @@ void add_sim(CLI::App& app) {
   run->add_option("--domain", r.domain, "DDS domain id (default: a free one is claimed)");
   run->add_flag("--join", r.join, "Join boards already running (axisproof sim board --domain N)");
   run->add_option("--out", r.out_root, "Output root; board 0's files go to ROOT/NAME/")->default_val("out/sim");
+  run->add_option("--target", r.target, "host: the core in this process; qemu: the XY board's Cortex-M4 image under QEMU (docs/qemu.md)")
+      ->default_val("host")
+      ->check(CLI::IsMember({"host", "qemu"}));
   run->add_option("--step-ms", r.step_ms, "Lockstep granularity in ms (telemetry sampling)")->default_val(10);
   add_profile_option(run, run_profile);
   run->final_callback([] {

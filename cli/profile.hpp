@@ -28,6 +28,7 @@ struct SimRunArgs {
   long long domain = -1;  // -1: claim a free one
   std::string out_root;
   int step_ms = 10;
+  std::string target = "host";  // host: the core in-process; qemu: the XY board's QEMU image (docs/qemu.md)
 };
 
 struct SimBoardArgs {
@@ -87,6 +88,9 @@ int sim_run_main(const std::function<SimRunVerdict()>& run);
 // --domain), --domain, --step-ms (each profile checks the period against its own rule), the log.
 template <class RunOptions>
 void set_run_options(const SimRunArgs& a, RunOptions& o) {
+  if constexpr (!requires { o.qemu_image; }) {
+    if (a.target != "host") throw std::runtime_error("--target " + a.target + ": this profile has no image (docs/profiles.md)");
+  }
   o.join = a.join;
   if (a.join && a.domain < 0) throw std::runtime_error("--join needs --domain");
   if (a.domain >= 0) o.domain = static_cast<std::uint32_t>(a.domain);

@@ -167,6 +167,12 @@ int sim_board(const SimBoardArgs& a) {
   });
 }
 
+// The XY board's QEMU image (docs/qemu.md), built in the m4 tree first if needed.
+std::string qemu_image() {
+  if (!ensure_built("m4", {"ap_xy_qemu"}, true)) throw std::runtime_error("building the QEMU image (m4 preset) failed");
+  return build_dir("m4") + "/firmware/m4/ap_xy_qemu.elf";
+}
+
 int sim_run(const SimRunArgs& a) {
   return sim_run_main([&]() -> SimRunVerdict {
     sim::scenario::Scenario s = sim::scenario::parse_file(a.scenario);
@@ -174,6 +180,12 @@ int sim_run(const SimRunArgs& a) {
     o.realtime = a.realtime || s.timing == sim::scenario::Timing::realtime;
     set_run_options(a, o);
     o.out_root = a.out_root;
+    if (a.target == "qemu") {
+      if (a.join) throw std::runtime_error("--target qemu runs its own boards: no --join");
+      o.qemu_image = qemu_image();
+    } else if (a.target != "host") {
+      throw std::runtime_error("--target " + a.target + ": host or qemu");
+    }
     if (o.step_us <= 0 || s.period_us % o.step_us != 0) throw std::runtime_error("--step-ms must divide the command period");
     const sim::RunResult r = sim::run_scenario(s, o);
     std::cout << sim::format_report(s, r);

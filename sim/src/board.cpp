@@ -13,6 +13,7 @@
 #include "models/waveform/svg.hpp"
 #include "models/waveform/vcd.hpp"
 #include "protocol/codec/layout.hpp"
+#include "core/axis/step_timer.hpp"
 #include "core/frame/command_codec.hpp"
 #include "core/storage/parameters.hpp"
 #include "core/storage/store.hpp"
@@ -181,7 +182,9 @@ void SimBoard::boot() {
   }
   // What this boot will load (as `probe fram.NAME`), for the echo model's boot facts.
   const storage::ParameterSet stored = model::echo::stored_set(fram_);
+  if (!opt_.qemu_image.empty()) qemu_start();   // the image boots first; the mirror replays it
   (void)board_->boot();
+  if (on_qemu()) qemu_after_tick(true);
   // A fresh echo model per power-up: boot facts from what the board sampled at boot (the
   // encoders, set by the carriage) and the stored parameters (docs/echo-model.md). Bytes still
   // in the old core's receive ring died with it, so the model's link twin starts empty too.
@@ -228,18 +231,7 @@ void SimBoard::fill_inputs(board::Inputs& in) {
   }
 }
 
-std::uint16_t SimBoard::expander_word() const {
-  // GPIO expander inputs: bits 0..3 endstops (x min, x max, y min, y max), 4 button,
-  // 5 charger detect, 6 USB flag, 7..8 BLE STATUS1/2.
-  if (!board_) return 0;
-  const board::Inputs& in = board_->inputs();
-  std::uint16_t w = 0;
-  w = static_cast<std::uint16_t>(w | (in.endstop_min[0] != 0 ? 1U : 0U) | (in.endstop_max[0] != 0 ? 2U : 0U));
-  w = static_cast<std::uint16_t>(w | (in.endstop_min[1] != 0 ? 4U : 0U) | (in.endstop_max[1] != 0 ? 8U : 0U));
-  w = static_cast<std::uint16_t>(w | (button_ ? 16U : 0U) | (in.charger ? 32U : 0U) | (in.usb ? 64U : 0U));
-  w = static_cast<std::uint16_t>(w | (in.ble_status1 ? 128U : 0U) | (in.ble_status2 ? 256U : 0U));
-  return w;
-}
+std::uint16_t SimBoard::expander_word() const { return board_ ? expander_word(board_->inputs()) : 0; }
 
 void SimBoard::sample(void* ctx, board::Inputs& in) {
   auto* s = static_cast<SimBoard*>(ctx);
@@ -260,6 +252,35 @@ bool same_env(const board::Inputs& a, const board::Inputs& b) {
 void SimBoard::motor(void* ctx, board::Axis ax, const board::MotorOutput& o) {
   auto* s = static_cast<SimBoard*>(ctx);
   const auto a = static_cast<std::size_t>(ax);
+  if (s->on_qemu()) {
+    // The image's outputs move the carriage; the mirror's must be the same.
+    const ImageMotor& m = s->image_motor_[a];
+    const bool enable = (s->image_olat_b_ & (a == 0 ? 0x40U : 0x80U)) == 0;
+    const auto t = axis::step_timer(o.step_hz);
+    const bool running = o.enable && o.steps > 0 && t.has_value();
+    const bool same = enable == o.enable && m.dir == (o.dir > 0) && m.armed &&
+                      (running ? (m.steps == o.steps && m.psc == t->psc && m.arr == t->arr) : m.steps == 0);
+    if (!same) {
+      char buf[200];
+      std::snprintf(buf, sizeof buf, "axis %c: image ENA %d DIR %d steps %d PSC %u ARR %u, host core ENA %d DIR %d steps %d at %u Hz",
+                    a == 0 ? 'X' : 'Y', enable ? 1 : 0, m.dir ? 1 : 0, m.steps, m.psc, m.arr, o.enable ? 1 : 0,
+                    o.dir > 0 ? 1 : 0, o.steps, o.step_hz);
+      s->qemu_fail(buf);
+      board::MotorOutput img;
+      img.enable = enable;
+      img.dir = m.dir ? std::int8_t{1} : std::int8_t{-1};
+      img.steps = m.steps;
+      const std::uint64_t period = axis::timer_period_clocks({m.psc, m.arr});
+      img.step_hz = m.steps > 0 ? static_cast<std::uint32_t>(axis::kTimerClockHz / period) : 0;
+      s->motor_effect(a, img);
+      return;
+    }
+  }
+  s->motor_effect(a, o);
+}
+
+void SimBoard::motor_effect(std::size_t a, const board::MotorOutput& o) {
+  SimBoard* s = this;
   s->out_[a] = o;
   const std::int64_t t0 = static_cast<std::int64_t>(s->ticks_) * kNsPerTick;
   axis::Output out;
@@ -301,6 +322,24 @@ void SimBoard::frame_taken(void* ctx, const frame::CommandFrame& f) {
 
 void SimBoard::uart_tx(void* ctx, std::span<const std::uint8_t> bytes) {
   auto* s = static_cast<SimBoard*>(ctx);
+  if (s->on_qemu()) {
+    // The image's bytes go out; the mirror's must be the same ones.
+    const std::size_t have = s->image_tx_.size() - s->image_tx_pos_;
+    const std::size_t n = std::min(have, bytes.size());
+    const std::span<const std::uint8_t> img(s->image_tx_.data() + s->image_tx_pos_, n);
+    s->image_tx_pos_ += n;
+    if (n != bytes.size() || !std::equal(img.begin(), img.end(), bytes.begin())) {
+      s->qemu_fail("TX: the image sent " + std::to_string(n) + " bytes where the host core sent " +
+                   std::to_string(bytes.size()) + (n == bytes.size() ? " different ones" : ""));
+    }
+    if (n > 0) s->tx_effect(img);
+    return;
+  }
+  s->tx_effect(bytes);
+}
+
+void SimBoard::tx_effect(std::span<const std::uint8_t> bytes) {
+  SimBoard* s = this;
   s->tx_.insert(s->tx_.end(), bytes.begin(), bytes.end());
   s->echo_digests_.push_back(fnv1a(s->echo_digests_.empty() ? kFnvBasis : s->echo_digests_.back(), bytes));
   if (bytes.size() == codec::kEchoLength) {
@@ -318,6 +357,11 @@ void SimBoard::uart_tx(void* ctx, std::span<const std::uint8_t> bytes) {
 }
 
 bool SimBoard::tmc_transfer(std::size_t a, const tmc::Datagram& tx, tmc::Datagram& rx) {
+  if (on_qemu()) return replay(static_cast<std::uint8_t>(a), tx, rx);
+  return tmc_device(a, tx, rx);
+}
+
+bool SimBoard::tmc_device(std::size_t a, const tmc::Datagram& tx, tmc::Datagram& rx) {
   rx = tmc_[a].transfer(tx);
   if (wave_) {
     (void)wave_->spi(kDevTmcX + a, static_cast<std::uint64_t>(ticks_) * kNsPerTick + 100'000U, tx, rx);
@@ -335,6 +379,18 @@ bool SimBoard::tmc_spi_y(void* ctx, const tmc::Datagram& tx, tmc::Datagram& rx) 
 
 bool SimBoard::fram_spi(void* ctx, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept {
   auto* s = static_cast<SimBoard*>(ctx);
+  if (s->on_qemu()) {
+    try {
+      return s->replay(2, tx, rx);
+    } catch (...) {
+      return false;
+    }
+  }
+  return s->fram_device(tx, rx);
+}
+
+bool SimBoard::fram_device(std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept {
+  SimBoard* s = this;
   const bool ok = s->fram_.transfer(tx, rx);
   if (s->wave_) {
     try {
@@ -357,7 +413,9 @@ void SimBoard::tick() {
   if (button_ && now_us_ >= button_until_us_) button_ = false;
   tick_echoes_.clear();
   const std::uint64_t samples = samples_;
+  if (on_qemu()) qemu_tick();
   board_->tick();
+  if (on_qemu()) qemu_after_tick(false);
   for (auto& d : tmc_) d.clear_log();
   check_safety();
   // The checker gives the model the inputs the core kept (board.inputs()): they must be the
@@ -485,6 +543,10 @@ void SimBoard::write_path_outputs() const {
 
 void SimBoard::rx(std::span<const std::uint8_t> bytes) {
   if (!board_) boot();
+  if (on_qemu()) {
+    qemu_->link_write(bytes);
+    link_delivered_ += static_cast<std::uint32_t>(bytes.size());
+  }
   board_->uart_rx(bytes);
   checker_->rx(bytes);
   if (wave_) (void)wave_->uart(wf::BoardWaveforms::Uart::rx, static_cast<std::uint64_t>(now_us_) * 1000U, bytes);
@@ -652,7 +714,9 @@ std::string SimBoard::env(const std::string& line) {
 void SimBoard::finish() {
   if (finished_) return;
   finished_ = true;
+  if (on_qemu()) qemu_stop();
   if (opt_.out_dir.empty()) return;
+  if (!opt_.qemu_image.empty()) write_qemu_stats();
   std::filesystem::create_directories(opt_.out_dir);
   // Lost-step risk per tick and axis, from the mechanics model over every STEP edge.
   std::array<std::vector<std::uint8_t>, board::kAxes> risk;

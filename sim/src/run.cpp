@@ -32,6 +32,7 @@ RunResult run_scenario(const sc::Scenario& s, const RunOptions& opt) {
       BoardOptions bo;
       bo.id = b;
       bo.baud = s.baud;
+      bo.qemu_image = opt.qemu_image;
       if (b == 0) bo.out_dir = out_dir;
       threads.emplace_back([&, bo] {
         try {

@@ -29,6 +29,7 @@
 #include "models/fram/mb85rs256b.hpp"
 #include "models/tmc2130/device.hpp"
 #include "models/mechanics/mechanics.hpp"
+#include "sim/qemu_image.hpp"
 #include "sim/trace.hpp"
 
 namespace ap::model::waveform {
@@ -51,6 +52,20 @@ struct BoardOptions {
   std::uint32_t baud = 115'200;
   std::string out_dir;         // empty: no output files
   bool waveforms = true;       // waveforms.vcd (with out_dir)
+  // The QEMU target (docs/qemu.md): the image at this path runs the board; empty: the core
+  // runs in this process.
+  std::string qemu_image;
+  std::string qemu_dir;        // its FIFOs, socket and log (default: out_dir/qemu or a temp dir)
+};
+
+// What the QEMU target measured (docs/qemu.md "The gate stage"), over all boots of a run.
+struct QemuStats {
+  std::uint64_t ticks = 0;          // control ticks the image ran
+  double wall_s = 0;                // wall time spent running them
+  std::uint32_t stack_used = 0;     // the highest stack high-water mark of any boot (bytes)
+  std::uint32_t stack_size = 0;
+  std::uint64_t boots = 0;
+  std::uint64_t divergences = 0;    // ticks where the image and the host core disagreed
 };
 
 // Tab. 7-2 states of the BLE module status pins (STATUS1_IND, STATUS2_IND).
@@ -114,6 +129,7 @@ class SimBoard {
   // Every echo the core sent on TX (all boots): count and FNV-1a 64 digest of the bytes in
   // order, for the PC's check that the bus delivered exactly these (probe `echo_sent`).
   [[nodiscard]] std::uint64_t echoes_sent() const { return echo_digests_.size(); }
+  [[nodiscard]] const QemuStats& qemu_stats() const { return qemu_stats_; }
 
  private:
   struct AxisRec {
@@ -128,6 +144,11 @@ class SimBoard {
   static bool tmc_spi_y(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
   static bool fram_spi(void* ctx, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept;
   bool tmc_transfer(std::size_t a, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
+  // The device models' side of a transfer (the mirror's transfers replay the image's instead).
+  bool tmc_device(std::size_t a, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
+  bool fram_device(std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept;
+  void motor_effect(std::size_t a, const board::MotorOutput& o);
+  void tx_effect(std::span<const std::uint8_t> bytes);
 
   void tick();
   void fill_inputs(board::Inputs& in);
@@ -139,6 +160,44 @@ class SimBoard {
   std::int32_t usteps_per_rev() const;
   void seed_fram();
   [[nodiscard]] model::mechanics::Result mechanics(std::size_t a) const;
+
+  // The QEMU target (docs/qemu.md "Co-simulation"). The image runs the board; board_ above is
+  // its mirror: the host core fed the same inputs, whose SPI transfers, motor outputs and TX
+  // bytes must equal the image's, tick by tick. The image's transactions drive the device
+  // models; the mirror's are checked against them and answered with the image's replies.
+  struct Transfer {
+    std::uint8_t dev = 0;
+    std::vector<std::uint8_t> mosi, miso;
+  };
+  struct ImageMotor {
+    bool dir = true;
+    bool armed = false;
+    std::uint16_t psc = 0, arr = 0;
+    std::int32_t steps = 0;
+  };
+  [[nodiscard]] bool on_qemu() const { return qemu_ != nullptr; }
+  void qemu_start();
+  void qemu_stop();
+  void qemu_serve(cosim::Kind until, QemuImage::Message* last);
+  void qemu_answer(const QemuImage::Message& m);
+  void qemu_tick();
+  void qemu_after_tick(bool boot);
+  std::uint16_t expander_word(const board::Inputs& in) const;
+  void qemu_fail(const std::string& what);
+  bool replay(std::uint8_t dev, std::span<const std::uint8_t> mosi, std::span<std::uint8_t> miso);
+  void write_qemu_stats() const;
+  std::unique_ptr<QemuImage> qemu_;
+  bool image_ready_ = false;   // the image waits for a grant (its Ready was read)
+  std::vector<Transfer> qemu_log_;
+  std::size_t qemu_log_pos_ = 0;
+  std::array<ImageMotor, board::kAxes> image_motor_{};
+  std::uint8_t image_olat_b_ = 0xC0;
+  std::vector<std::uint8_t> image_tx_;      // the image's TX bytes of this tick, not yet matched
+  std::size_t image_tx_pos_ = 0;
+  std::uint32_t link_delivered_ = 0;        // link bytes sent to the image since its power-up
+  std::uint32_t image_ticks_ = 0;
+  std::array<std::int32_t, board::kAxes> image_pos_{};
+  QemuStats qemu_stats_;
 
   BoardOptions opt_;
   Machine machine_;

@@ -34,6 +34,7 @@ struct RunOptions {
   std::int64_t step_us = 10'000;      // lockstep granularity (telemetry sampling)
   std::optional<std::uint32_t> domain;   // default: claim a free one (DomainLease)
   bool join = false;                  // boards already run elsewhere (`axisproof sim board`)
+  std::string qemu_image;             // --target qemu: the boards run this image (docs/qemu.md)
   std::ostream* log = nullptr;        // progress and the PC's report
 };
 

@@ -1,0 +1,94 @@
+// The board port (firmware/board_port.hpp): what the core asks of the hardware, done with the
+// peripheral layer. The encoders and the expander are read every tick with the other inputs;
+// the expander's outputs (ENA) are written only when they change, since each change costs an
+// SPI transaction (seed-000.md §4.14).
+#include "firmware/board_port.hpp"
+
+#include <array>
+
+#include "core/axis/step_timer.hpp"
+#include "firmware/periph.hpp"
+
+namespace ap::fw {
+namespace {
+
+std::uint16_t tx_count = 0;
+std::uint8_t olat_b = kOlatEnnX | kOlatEnnY;  // both drivers off until the core enables them
+bool olat_written = false;
+
+bool tmc(SpiDevice dev, const tmc2130::Datagram& tx, tmc2130::Datagram& rx) {
+  return spi_transfer(dev, tx.data(), rx.data(), tx.size());
+}
+bool tmc_x(void*, const tmc2130::Datagram& tx, tmc2130::Datagram& rx) { return tmc(SpiDevice::TmcX, tx, rx); }
+bool tmc_y(void*, const tmc2130::Datagram& tx, tmc2130::Datagram& rx) { return tmc(SpiDevice::TmcY, tx, rx); }
+
+bool fram(void*, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept {
+  if (tx.size() != rx.size()) return false;
+  return spi_transfer(SpiDevice::Fram, tx.data(), rx.data(), tx.size());
+}
+
+void sample(void*, board::Inputs& in) {
+  std::uint8_t mosi[4] = {kExpanderRead, kExpanderGpioA, 0, 0};
+  std::uint8_t miso[4] = {};
+  (void)spi_transfer(SpiDevice::Expander, mosi, miso, 4);
+  const auto w = static_cast<std::uint16_t>(miso[2] | miso[3] << 8);
+  in.endstop_min = {static_cast<std::uint8_t>((w & kExpXMin) != 0), static_cast<std::uint8_t>((w & kExpYMin) != 0)};
+  in.endstop_max = {static_cast<std::uint8_t>((w & kExpXMax) != 0), static_cast<std::uint8_t>((w & kExpYMax) != 0)};
+  in.charger = (w & kExpCharger) != 0;
+  in.usb = (w & kExpUsb) != 0;
+  in.ble_status1 = (w & kExpBle1) != 0;
+  in.ble_status2 = (w & kExpBle2) != 0;
+  for (std::size_t a = 0; a < board::kAxes; ++a) {
+    const std::uint8_t zero[4] = {};
+    std::uint8_t e[4] = {};
+    const bool ok = spi_transfer(a == 0 ? SpiDevice::EncoderX : SpiDevice::EncoderY, zero, e, 4);
+    in.encoder[a] = ok ? encoder_reading(e) : axis::EncoderReading{};
+  }
+  in.battery_mv = battery_mv(adc_read(AdcChannel::Battery));
+  in.charge_ma = charge_ma(adc_read(AdcChannel::ChargeCurrent));
+}
+
+void motor(void*, board::Axis ax, const board::MotorOutput& o) {
+  const auto a = static_cast<std::size_t>(ax);
+  const std::uint8_t enn = a == 0 ? kOlatEnnX : kOlatEnnY;
+  const auto want = static_cast<std::uint8_t>(o.enable ? (olat_b & ~enn) : (olat_b | enn));
+  if (want != olat_b || !olat_written) {
+    olat_b = want;
+    olat_written = true;
+    const std::uint8_t mosi[3] = {kExpanderWrite, kExpanderOlatB, olat_b};
+    std::uint8_t miso[3] = {};
+    (void)spi_transfer(SpiDevice::Expander, mosi, miso, 3);
+  }
+  pin_write(a == 0 ? Pin::DirX : Pin::DirY, o.dir > 0);
+  const auto t = axis::step_timer(o.step_hz);
+  if (o.enable && o.steps > 0 && t) {
+    step_arm(a, t->psc, t->arr, o.steps);
+  } else {
+    step_arm(a, 0, 0, 0);
+  }
+}
+
+void uart_tx(void*, std::span<const std::uint8_t> bytes) {
+  link_send(bytes.data(), bytes.size());
+  tx_count = static_cast<std::uint16_t>(tx_count + bytes.size());
+}
+
+}  // namespace
+
+board::Hardware board_hardware() {
+  board::Hardware hw;
+  hw.tmc = {tmc2130::SpiPort{&tmc_x, nullptr}, tmc2130::SpiPort{&tmc_y, nullptr}};
+  hw.fram = storage::SpiBus{&fram, nullptr};
+  hw.sample = &sample;
+  hw.motor = &motor;
+  hw.uart_tx = &uart_tx;
+  return hw;
+}
+
+std::uint16_t take_tx_count() {
+  const std::uint16_t n = tx_count;
+  tx_count = 0;
+  return n;
+}
+
+}  // namespace ap::fw

@@ -1,0 +1,126 @@
+// Reset and exception entry of both images (docs/qemu.md "Images"): the vector table, the C++
+// run-time set-up (data, bss, FPU, constructors), the stack paint, and fault capture. The
+// STM32L476 and the STM32F405 share the Cortex-M4 core exceptions and the interrupt numbers
+// used here (USART1 37, TIM2 28, TIM3 29), so one table serves both.
+#include <cstddef>
+#include <cstdint>
+
+#include "firmware/app.hpp"
+#include "firmware/periph.hpp"
+#include "firmware/stack.hpp"
+
+extern "C" {
+extern std::uint32_t __stack_bottom[];
+extern std::uint32_t __stack_top[];
+extern std::uint32_t __data_start[];
+extern std::uint32_t __data_end[];
+extern const std::uint32_t __data_load[];
+extern std::uint32_t __bss_start[];
+extern std::uint32_t __bss_end[];
+extern void (*const __init_array_start[])();
+extern void (*const __init_array_end[])();
+
+[[noreturn]] void Reset_Handler();
+void Fault_Handler();
+void SysTick_Handler();
+void USART1_IRQHandler();
+}
+
+namespace {
+
+volatile std::uint32_t& reg(std::uintptr_t a) { return *reinterpret_cast<volatile std::uint32_t*>(a); }
+
+constexpr std::uintptr_t kCpacr = 0xE000ED88;
+constexpr std::uintptr_t kCfsr = 0xE000ED28;
+constexpr std::uintptr_t kHfsr = 0xE000ED2C;
+// Words kept unpainted below the reset handler's own frame while painting.
+constexpr std::size_t kPaintMargin = 16;
+
+}  // namespace
+
+namespace ap::fw {
+
+std::uint32_t stack_size() {
+  return static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(__stack_top) -
+                                    reinterpret_cast<std::uintptr_t>(__stack_bottom));
+}
+
+std::uint32_t stack_used() {
+  const std::uint32_t* p = __stack_bottom;
+  while (p < __stack_top && *p == kStackPaint) ++p;
+  return static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(__stack_top) - reinterpret_cast<std::uintptr_t>(p));
+}
+
+bool stack_overflowed() { return __stack_bottom[0] != kStackPaint; }
+
+}  // namespace ap::fw
+
+extern "C" {
+
+[[noreturn]] void Reset_Handler() {
+  // Paint first, while nothing below this frame is in use: every word never written since
+  // reset still holds the pattern at the end of a run.
+  std::uintptr_t sp = 0;
+  __asm volatile("mov %0, sp" : "=r"(sp));
+  const std::uintptr_t limit_addr = sp - kPaintMargin * sizeof(std::uint32_t);
+  auto* limit = reinterpret_cast<std::uint32_t*>(limit_addr);
+  for (std::uint32_t* p = __stack_bottom; p < limit; ++p) *p = ap::fw::kStackPaint;
+  const std::uint32_t* src = __data_load;
+  for (std::uint32_t* p = __data_start; p < __data_end; ++p) *p = *src++;
+  for (std::uint32_t* p = __bss_start; p < __bss_end; ++p) *p = 0;
+  // CP10 and CP11 full access: the core is built for the FPU's calling convention (hard float).
+  reg(kCpacr) = reg(kCpacr) | (0xFU << 20);
+  __asm volatile("dsb\n isb" ::: "memory");
+  for (auto* f = __init_array_start; f < __init_array_end; ++f) (*f)();
+  ap::fw::run();
+  for (;;) __asm volatile("wfi");  // the run ended: the host stops the machine
+}
+
+// The exception frame the core stacked: r0 r1 r2 r3 r12 lr pc xpsr.
+[[noreturn]] void fault_frame(const std::uint32_t* frame, std::uint32_t exc_return) {
+  std::uint32_t ipsr = 0;
+  __asm volatile("mrs %0, ipsr" : "=r"(ipsr));
+  (void)exc_return;
+  ap::fw::fault(static_cast<std::uint8_t>(ipsr & 0xFFU), frame[6], frame[5], reg(kCfsr), reg(kHfsr));
+}
+
+// Hard, memory, bus and usage faults, NMI and every interrupt nobody claims: a fault, with the
+// faulting instruction's address from the stacked frame of whichever stack was in use.
+[[gnu::naked]] void Fault_Handler() {
+  __asm volatile(
+      "tst lr, #4\n"
+      "ite eq\n"
+      "mrseq r0, msp\n"
+      "mrsne r0, psp\n"
+      "mov r1, lr\n"
+      "b fault_frame\n");
+}
+
+}  // extern "C"
+
+namespace {
+
+using Handler = void (*)();
+union Vector {
+  Handler handler;
+  std::uint32_t* stack;
+};
+
+constexpr std::size_t kExternalIrqs = 82;  // STM32L476 and STM32F405 both end at IRQ 81
+
+constexpr auto make_table() {
+  struct Table {
+    Vector v[16 + kExternalIrqs];
+  } t{};
+  for (auto& e : t.v) e.handler = &Fault_Handler;
+  t.v[0].stack = __stack_top;
+  t.v[1].handler = &Reset_Handler;
+  t.v[11].handler = &Fault_Handler;  // SVCall: unused, so unexpected
+  t.v[15].handler = &SysTick_Handler;
+  t.v[16 + 37].handler = &USART1_IRQHandler;
+  return t;
+}
+
+}  // namespace
+
+[[gnu::section(".isr_vector"), gnu::used]] constinit const auto kVectors = make_table();

@@ -1,0 +1,209 @@
+// The QEMU image as a process (sim/qemu_image.hpp, docs/qemu.md "Co-simulation").
+#include "sim/qemu_image.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace ap::sim {
+namespace {
+
+std::runtime_error sys_error(const std::string& what) { return std::runtime_error(what + ": " + std::strerror(errno)); }
+
+void make_fifo(const std::string& path) {
+  std::filesystem::remove(path);
+  if (::mkfifo(path.c_str(), 0600) != 0) throw sys_error("mkfifo " + path);
+}
+
+}  // namespace
+
+QemuImage::QemuImage(QemuOptions opt) : opt_(std::move(opt)) {
+  namespace fs = std::filesystem;
+  if (!fs::exists(opt_.elf)) throw std::runtime_error("no QEMU image at " + opt_.elf + " (ci/m4-build builds it)");
+  fs::create_directories(opt_.work_dir);
+  const std::string dir = fs::absolute(opt_.work_dir).string();
+  make_fifo(dir + "/cosim.to-host");
+  make_fifo(dir + "/cosim.to-image");
+  // Both ends read-write: neither open blocks, and a read waits for data instead of seeing end of
+  // file before the image has opened its end.
+  to_host_ = ::open((dir + "/cosim.to-host").c_str(), O_RDWR | O_CLOEXEC);
+  to_image_ = ::open((dir + "/cosim.to-image").c_str(), O_RDWR | O_CLOEXEC);
+  if (to_host_ < 0 || to_image_ < 0) throw sys_error("open the co-simulation FIFOs");
+  const std::string sock = dir + "/link.sock";
+  fs::remove(sock);
+  listen_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  if (sock.size() >= sizeof addr.sun_path) throw std::runtime_error("socket path too long: " + sock);
+  std::memcpy(addr.sun_path, sock.c_str(), sock.size() + 1);
+  if (listen_ < 0 || ::bind(listen_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 || ::listen(listen_, 1) != 0) {
+    throw sys_error("link socket " + sock);
+  }
+  const std::string elf = fs::absolute(opt_.elf).string();
+  std::vector<std::string> args = {opt_.qemu, "-M", "netduinoplus2", "-display", "none", "-monitor", "none",
+                                   "-kernel", elf, "-semihosting-config", "enable=on,target=native",
+                                   "-icount", "shift=" + std::to_string(opt_.icount_shift) + ",sleep=off",
+                                   "-chardev", "socket,id=link,path=" + sock, "-serial", "chardev:link"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addchdir_np(&fa, dir.c_str());
+  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 1, (dir + "/qemu.log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, opt_.qemu.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) {
+    errno = rc;
+    throw sys_error("start " + opt_.qemu + " (the bootstrap installs qemu-system-arm)");
+  }
+  pid_ = pid;
+  pollfd p{listen_, POLLIN, 0};
+  if (::poll(&p, 1, static_cast<int>(opt_.timeout.count())) != 1) {
+    throw std::runtime_error("QEMU did not connect the link socket; " + log_tail());
+  }
+  link_ = ::accept4(listen_, nullptr, nullptr, SOCK_CLOEXEC);
+  if (link_ < 0) throw sys_error("accept the link socket");
+}
+
+QemuImage::~QemuImage() {
+  if (pid_ > 0) {
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    ::waitpid(pid_, &status, 0);
+  }
+  for (int fd : {to_host_, to_image_, listen_, link_}) {
+    if (fd >= 0) ::close(fd);
+  }
+}
+
+std::string QemuImage::log_tail() const {
+  std::ifstream in(opt_.work_dir + "/qemu.log");
+  std::stringstream s;
+  s << in.rdbuf();
+  std::string t = s.str();
+  if (t.size() > 400) t = t.substr(t.size() - 400);
+  return t.empty() ? std::string("QEMU printed nothing") : "QEMU said: " + t;
+}
+
+void QemuImage::read_exact(int fd, std::uint8_t* buf, std::size_t n, const char* what) {
+  std::size_t done = 0;
+  while (done < n) {
+    pollfd p{fd, POLLIN, 0};
+    const int r = ::poll(&p, 1, static_cast<int>(opt_.timeout.count()));
+    if (r == 0) {
+      int status = 0;
+      const bool gone = ::waitpid(pid_, &status, WNOHANG) == pid_;
+      if (gone) pid_ = -1;
+      throw std::runtime_error(std::string("the image went silent (") + what + ", " +
+                               std::to_string(opt_.timeout.count()) + " ms)" + (gone ? "; QEMU exited. " + log_tail() : ""));
+    }
+    if (r < 0) {
+      if (errno == EINTR) continue;
+      throw sys_error(what);
+    }
+    const ssize_t got = ::read(fd, buf + done, n - done);
+    if (got <= 0) {
+      if (got < 0 && errno == EINTR) continue;
+      throw std::runtime_error(std::string(what) + ": closed; " + log_tail());
+    }
+    done += static_cast<std::size_t>(got);
+  }
+}
+
+QemuImage::Message QemuImage::next() {
+  auto byte = [&]() {
+    if (in_pos_ == in_.size()) {
+      in_.resize(4096);
+      in_pos_ = 0;
+      pollfd p{to_host_, POLLIN, 0};
+      for (;;) {
+        const int r = ::poll(&p, 1, static_cast<int>(opt_.timeout.count()));
+        if (r > 0) break;
+        if (r < 0 && errno == EINTR) continue;
+        int status = 0;
+        const bool gone = ::waitpid(pid_, &status, WNOHANG) == pid_;
+        if (gone) pid_ = -1;
+        in_.clear();
+        throw std::runtime_error("the image went silent (" + std::to_string(opt_.timeout.count()) + " ms)" +
+                                 (gone ? "; QEMU exited. " + log_tail() : std::string()));
+      }
+      const ssize_t got = ::read(to_host_, in_.data(), in_.size());
+      if (got <= 0) {
+        in_.clear();
+        throw sys_error("read the co-simulation channel");
+      }
+      in_.resize(static_cast<std::size_t>(got));
+    }
+    return in_[in_pos_++];
+  };
+  Message m;
+  m.kind = static_cast<cosim::Kind>(byte());
+  const std::size_t n = byte();
+  m.payload.resize(n);
+  for (std::size_t i = 0; i < n; ++i) m.payload[i] = byte();
+  return m;
+}
+
+void QemuImage::send(cosim::Kind kind, std::span<const std::uint8_t> payload) {
+  if (payload.size() > cosim::kMaxPayload) throw std::logic_error("co-simulation payload too long");
+  std::vector<std::uint8_t> m;
+  m.reserve(payload.size() + 2);
+  m.push_back(static_cast<std::uint8_t>(kind));
+  m.push_back(static_cast<std::uint8_t>(payload.size()));
+  m.insert(m.end(), payload.begin(), payload.end());
+  std::size_t done = 0;
+  while (done < m.size()) {
+    const ssize_t w = ::write(to_image_, m.data() + done, m.size() - done);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) throw sys_error("write the co-simulation channel");
+    done += static_cast<std::size_t>(w);
+  }
+}
+
+void QemuImage::reply(std::span<const std::uint8_t> bytes) { send(cosim::Kind::Reply, bytes); }
+
+void QemuImage::grant(std::uint32_t tick, std::uint32_t link_delivered) {
+  std::uint8_t p[8];
+  cosim::put_u32(p, tick);
+  cosim::put_u32(p + 4, link_delivered);
+  send(cosim::Kind::Grant, p);
+}
+
+void QemuImage::end() { send(cosim::Kind::End, {}); }
+
+void QemuImage::link_write(std::span<const std::uint8_t> bytes) {
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t w = ::send(link_, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) throw sys_error("write the link socket");
+    done += static_cast<std::size_t>(w);
+  }
+}
+
+std::vector<std::uint8_t> QemuImage::link_read(std::size_t n) {
+  std::vector<std::uint8_t> out(n);
+  if (n > 0) read_exact(link_, out.data(), n, "the link's TX bytes");
+  return out;
+}
+
+}  // namespace ap::sim
