@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "firmware/link_ring.hpp"
 #include "firmware/periph.hpp"
 #include "protocol/cosim/wire.hpp"
 
@@ -31,11 +32,8 @@ constexpr std::uintptr_t kSystCsr = 0xE000'E010, kSystRvr = 0xE000'E014, kSystCv
 constexpr std::uint32_t kCoreHz = 168'000'000;
 constexpr std::uint32_t kTickHz = 1000;
 
-// The link's receive ring: written only by the interrupt, read only in thread mode.
-constexpr std::uint32_t kRingSize = 512;  // a power of two, > one tick's worth at 115200 baud
-std::uint8_t ring[kRingSize];
-volatile std::uint32_t ring_head = 0;  // bytes the ISR has stored since power-up
-volatile std::uint32_t ring_tail = 0;          // bytes thread mode has taken
+// The link's receive ring: 512 bytes, > one tick's worth at 115200 baud.
+constinit LinkRing<512> ring;
 volatile bool tick_pending = false;
 
 // ARM semihosting (BKPT 0xAB): QEMU runs the call in the emulated CPU's thread and returns
@@ -193,16 +191,9 @@ void link_send(const std::uint8_t* bytes, std::size_t n) {
   }
 }
 
-std::size_t link_take(std::uint8_t* out, std::size_t cap) {
-  std::size_t n = 0;
-  while (n < cap && ring_tail != ring_head) {
-    out[n++] = ring[ring_tail % kRingSize];
-    ring_tail = ring_tail + 1;
-  }
-  return n;
-}
+std::size_t link_take(std::uint8_t* out, std::size_t cap) { return ring.take(out, cap); }
 
-std::uint32_t link_received() { return ring_head; }
+std::uint32_t link_received() { return ring.received(); }
 
 bool tick_wait() {
   while (!tick_pending) __asm volatile("wfi");
@@ -215,7 +206,7 @@ bool tick_wait() {
   if (k != cosim::Kind::Grant || n != 8) fault(0xFE, 0, 0, 0, 0);
   // Every link byte the host sent before this grant is in before the tick runs.
   const std::uint32_t delivered = cosim::get_u32(buf + 4);
-  while (ring_head != delivered) {
+  while (ring.received() != delivered) {
   }
   return true;
 }
@@ -260,9 +251,6 @@ extern "C" void USART1_IRQHandler() {
     const auto b = static_cast<std::uint8_t>(reg(kUsart1 + kDr));
     // The ring holds more than the host ever sends between two ticks; a full ring would be a
     // host bug, and the byte count it grants would then never be reached.
-    if (ring_head - ring_tail < kRingSize) {
-      ring[ring_head % kRingSize] = b;
-      ring_head = ring_head + 1;
-    }
+    (void)ring.put(b);
   }
 }

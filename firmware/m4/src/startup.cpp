@@ -24,6 +24,10 @@ extern void (*const __init_array_end[])();
 void Fault_Handler();
 void SysTick_Handler();
 void USART1_IRQHandler();
+// The step timers' pulse counters: the STM32L476 layer defines them; the QEMU layer never
+// enables these interrupts, so there they stay what any unclaimed interrupt is, a fault.
+[[gnu::weak, gnu::alias("Fault_Handler")]] void TIM2_IRQHandler() noexcept;
+[[gnu::weak, gnu::alias("Fault_Handler")]] void TIM3_IRQHandler() noexcept;
 }
 
 namespace {
@@ -117,6 +121,8 @@ constexpr auto make_table() {
   t.v[1].handler = &Reset_Handler;
   t.v[11].handler = &Fault_Handler;  // SVCall: unused, so unexpected
   t.v[15].handler = &SysTick_Handler;
+  t.v[16 + 28].handler = &TIM2_IRQHandler;
+  t.v[16 + 29].handler = &TIM3_IRQHandler;
   t.v[16 + 37].handler = &USART1_IRQHandler;
   return t;
 }
