@@ -28,7 +28,9 @@
 //   coverage     ci/coverage tests over the profiles the test stages wrote (the asan build);
 //                llvm-cov line + branch of the profile's coverage paths, FAIL below 90 % branch. Falls
 //                back to the cov preset (a build of its own) when build/asan has no coverage.
-//   m4           ci/m4-build: Cortex-M4 static libraries, size table, symbol check
+//   m4           ci/m4-build: Cortex-M4 static libraries, the linked images, size table, symbol check
+//   qemu         (profiles with a bootable image) the image under qemu-system-arm: its
+//                scenarios PASS, their traces equal the host simulator's, and repeat
 //   bench        `axisproof bench --filter` one benchmark: the README's bench command needs the
 //                release preset, which `axisproof test` does not build, so the gate checks it
 // Then out/gate/report.md + report.html, --junit FILE, and the release artifact under
@@ -455,9 +457,82 @@ Outcome m4_stage(gate::Run& run, const std::string& log) {
           " % of " + kb(m[5].str()) + ")";
     if (st != 0) key += "; check failed";
   }
+  // The board's linked image (docs/qemu.md), where the profile has one.
+  if (std::regex_search(txt, m, std::regex(R"((ap_\w+_l476\.elf)\s+flash\s+(\d+) B\s+RAM\s+(\d+) B \(stack (\d+) B\))"))) {
+    key += "; " + m[1].str() + " linked: flash " + m[2].str() + " B, RAM " + m[3].str() + " B (stack " + m[4].str() + " B)";
+  }
   const std::string text = slurp(log);
   if (text.find("no core libraries are defined yet") != std::string::npos) return {Result::NotRun, "no core libraries yet"};
   return {st == 0 ? Result::Pass : Result::Fail, key};
+}
+
+// The bootable image in the loop (docs/qemu.md "The gate stage"): each of the profile's QEMU
+// scenarios runs on the image the m4 stage built from these sources, with the host core as its
+// lockstep mirror (any difference in SPI traffic, motor outputs, TX bytes or axis positions is
+// a violation), and again on the host simulator alone: the two trace.csv must be equal byte
+// for byte. The shortest one runs on the image twice: the same scenario gives the same trace.
+Outcome qemu_stage(gate::Run& run, const std::string& log) {
+  const bool m4_ok = std::any_of(run.rows.begin(), run.rows.end(), [](const gate::Row& r) {
+    return r.stage == "cortex-m4 build" && r.outcome.result == Result::Pass;
+  });
+  if (!m4_ok) return {Result::NotRun, "the cortex-m4 build did not pass: no image"};
+  const std::string root = gate_dir() + "/qemu";
+  const std::string self = quote(self_exe());
+  const auto stats = [](const std::string& file) {
+    std::map<std::string, std::string> kv;
+    std::ifstream in(file);
+    std::string k, v;
+    while (in >> k >> v) kv[k] = v;
+    return kv;
+  };
+  int passed = 0;
+  double emulated = 0, wall = 0;
+  unsigned long stack = 0, stack_size = 0;
+  std::vector<std::string> bad;
+  std::string shortest;
+  unsigned long shortest_ticks = 0;
+  for (const std::string_view sv : g_profile->qemu_scenarios) {
+    const std::string name(sv);
+    const std::string scn = std::string(g_profile->scenarios) + "/" + name + ".scn";
+    const int host = run_logged(self + " sim run " + quote(scn) + " --out " + quote(root + "/host"), log);
+    const int image = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), log,
+                                 "^scenario ");
+    const auto kv = stats(root + "/qemu/" + name + "/qemu.txt");
+    const bool same = slurp(root + "/host/" + name + "/trace.csv") == slurp(root + "/qemu/" + name + "/trace.csv") &&
+                      !slurp(root + "/qemu/" + name + "/trace.csv").empty();
+    if (kv.count("ticks") != 0) {
+      const unsigned long ticks = std::stoul(kv.at("ticks"));
+      emulated += std::stod(kv.at("emulated_s"));
+      wall += std::stod(kv.at("wall_s"));
+      stack = std::max(stack, std::stoul(kv.at("stack_used")));
+      stack_size = std::stoul(kv.at("stack_size"));
+      if (shortest.empty() || ticks < shortest_ticks) {
+        shortest = name;
+        shortest_ticks = ticks;
+      }
+    }
+    if (host == 0 && image == 0 && same) {
+      ++passed;
+    } else {
+      bad.push_back(name + (image != 0 ? " FAIL on the image" : host != 0 ? " FAIL on the host" : " traces differ"));
+    }
+  }
+  bool repeatable = false;
+  if (!shortest.empty()) {
+    const std::string scn = std::string(g_profile->scenarios) + "/" + shortest + ".scn";
+    const int again = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/again"), log);
+    repeatable = again == 0 && slurp(root + "/again/" + shortest + "/trace.csv") == slurp(root + "/qemu/" + shortest + "/trace.csv");
+    if (!repeatable) bad.push_back(shortest + " gave another trace the second time");
+  }
+  const std::size_t n = g_profile->qemu_scenarios.size();
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "%d/%zu scenarios PASS on the image, traces equal to the host's%s; emulated %.1f s in %.1f s wall (%.2fx); "
+                "stack high-water %lu of %lu B",
+                passed, n, repeatable ? ", repeatable" : "", emulated, wall, wall > 0 ? emulated / wall : 0.0, stack, stack_size);
+  std::string key = buf;
+  for (std::size_t i = 0; i < bad.size() && i < 3; ++i) key += (i ? ", " : "; ") + bad[i];
+  return {passed == static_cast<int>(n) && repeatable && n > 0 ? Result::Pass : Result::Fail, key};
 }
 
 // The README's `axisproof bench` end to end (release benchmarks build, one benchmark runs): a
@@ -491,7 +566,7 @@ void add_gate(CLI::App& app) {
   static std::string out_root;
   sub->add_option("--junit", junit, "Also write the verdict as JUnit XML to FILE");
   sub->add_option("--skip", skip, "Do not run STAGE (it is then NOT RUN, so the verdict is FAIL)")
-      ->check(CLI::IsMember({"build-dev", "build-asan", "tests", "proofs", "fuzz", "e2e", "mutation", "coverage", "m4", "bench"}));
+      ->check(CLI::IsMember({"build-dev", "build-asan", "tests", "proofs", "fuzz", "e2e", "mutation", "coverage", "m4", "qemu", "bench"}));
   sub->add_option("--out", out_root, "Write the reports to DIR/gate and the release artifact to DIR/release (default out/)");
   sub->add_option("--fuzz-time", fuzz_seconds, "Seconds per fuzz target in the fuzz smoke stage (default 10)")
       ->check(CLI::PositiveNumber);
@@ -531,11 +606,16 @@ void add_gate(CLI::App& app) {
         {"m4", "cortex-m4 build", [](gate::Run& r, std::string& l) { return m4_stage(r, l); }},
         {"bench", "benchmarks (release)", [](gate::Run&, std::string& l) { return bench_stage(l); }},
     };
+    // A profile with a bootable image also boots it (docs/qemu.md); the others have no such stage.
+    std::vector<Stage> all = stages;
+    if (!g_profile->qemu_scenarios.empty()) {
+      all.insert(all.end() - 1, Stage{"qemu", "firmware (QEMU)", [](gate::Run& r, std::string& l) { return qemu_stage(r, l); }});
+    }
     const auto start = std::chrono::steady_clock::now();
     run.pass = true;
-    for (size_t i = 0; i < stages.size(); ++i) {
-      const auto& s = stages[i];
-      std::printf("[%zu/%zu] %s ...\n", i + 1, stages.size(), s.name);
+    for (size_t i = 0; i < all.size(); ++i) {
+      const auto& s = all[i];
+      std::printf("[%zu/%zu] %s ...\n", i + 1, all.size(), s.name);
       std::fflush(stdout);
       const auto t0 = std::chrono::steady_clock::now();
       std::string log = log_path(s.id);
@@ -550,7 +630,7 @@ void add_gate(CLI::App& app) {
       std::string rel;
       if (!log.empty() && fs::exists(log)) rel = fs::relative(log, src).string();
       run.rows.push_back({s.name, o, secs, rel});
-      std::printf("[%zu/%zu] %s: %s (%.1f s) %s\n", i + 1, stages.size(), s.name, gate::to_string(o.result), secs, o.key.c_str());
+      std::printf("[%zu/%zu] %s: %s (%.1f s) %s\n", i + 1, all.size(), s.name, gate::to_string(o.result), secs, o.key.c_str());
       std::fflush(stdout);
       run.pass = run.pass && o.result == Result::Pass;
     }

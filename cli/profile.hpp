@@ -66,6 +66,9 @@ struct Profile {
   std::vector<std::string_view> coverage_paths;
   std::string_view size_check;
   std::string_view size_tag;
+  // The scenarios the gate's firmware (QEMU) stage runs on the profile's bootable image
+  // (docs/qemu.md); empty: the profile has no image yet and its gate has no such stage.
+  std::vector<std::string_view> qemu_scenarios;
 };
 
 // `sim board` for any profile: a.boards boards on one loopback participant of a.domain, one

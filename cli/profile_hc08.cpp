@@ -63,6 +63,7 @@ Profile hc08_profile() {
       // Cross-built for the Cortex-M4 and held to the HC08's budget (docs/hc08.md "MCU").
       .size_check = "ci/m4-build --profile hc08",
       .size_tag = "m4-hc08",
+      .qemu_scenarios = {},  // no bootable image yet (docs/hc08.md "MCU")
   };
 }
 

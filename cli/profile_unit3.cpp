@@ -152,6 +152,7 @@ Profile unit3_profile() {
       // Cross-built for the Cortex-M4 and held to the ATmega2560's budget (docs/unit3.md "MCU").
       .size_check = "ci/m4-build --profile unit3",
       .size_tag = "m4-unit3",
+      .qemu_scenarios = {},  // no bootable image yet (docs/unit3.md "MCU")
   };
 }
 

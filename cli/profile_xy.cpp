@@ -218,6 +218,9 @@ Profile xy_profile() {
                          "sim/src/scenario.cpp"},
       .size_check = "ci/m4-build",
       .size_tag = "m4",
+      // docs/qemu.md "The gate stage": an absolute move, a reversal, an endstop, a link loss, a
+      // parameter save across a reboot, and the IHOLD_IRUN shadow register.
+      .qemu_scenarios = {"absolute_20mm", "manual_reversal", "endstop_hit", "link_loss_jog", "accel_save_reboot", "ihold_irun"},
   };
 }
 

@@ -49,7 +49,7 @@ case $key in
   axisproof-gate)
     # Every stage skipped: the gate must still parse, print the table, write the reports and
     # the release manifest, and fail (a skipped stage is NOT RUN, and NOT RUN fails the gate).
-    stages=(build-dev build-asan tests proofs fuzz e2e mutation coverage m4 bench)
+    stages=(build-dev build-asan tests proofs fuzz e2e mutation coverage m4 qemu bench)
     args=()
     for s in "${stages[@]}"; do args+=(--skip "$s"); done
     expect 1 'NOT RUN' ./axisproof gate --out "$tmp/out" --junit "$tmp/junit.xml" "${args[@]}"
@@ -76,7 +76,10 @@ case $key in
     ./axisproof sim board --domain "$domain" --boards 1 --idle-timeout 60 >"$tmp/board.log" 2>&1 &
     board=$!
     expect 0 '' ./axisproof sim run scenarios/absolute_20mm --domain "$domain" --join --out "$tmp/join"
-    wait "$board" || fail "sim board exited $? ($(tail -3 "$tmp/board.log"))" ;;
+    wait "$board" || fail "sim board exited $? ($(tail -3 "$tmp/board.log"))"
+    # The same run on the XY board's Cortex-M4 image under QEMU (docs/qemu.md).
+    expect 0 'ihold_irun: PASS' ./axisproof sim run --target qemu scenarios/ihold_irun --out "$tmp/qemu"
+    grep -qx 'divergences 0' "$tmp/qemu/ihold_irun/qemu.txt" || fail "the QEMU run wrote no qemu.txt or diverged" ;;
   axisproof-frame)
     # The frames docs/protocol.md prints for these commands.
     expect 0 '' ./axisproof frame encode seq=1 x=stop y=goto:20000
