@@ -19,6 +19,17 @@ namespace {
 namespace chip = ap::tmp117;
 namespace bus = ap::i2c;
 using ap::model::i2c::Bus;
+
+// The bus fault each error names (docs/sensors.md), written out here rather than taken from the
+// driver under test.
+chip::Error expected_error(ap::i2c::Status s) {
+  switch (s) {
+    case ap::i2c::Status::NoPort: return chip::Error::NoPort;
+    case ap::i2c::Status::AddressNack: return chip::Error::AddressNack;
+    case ap::i2c::Status::DataNack: return chip::Error::DataNack;
+    default: return chip::Error::BusError;
+  }
+}
 using ap::model::tmp117::Device;
 
 struct Bench {
@@ -66,7 +77,7 @@ RC_GTEST_PROP(tmp117_props, one_bus_failure_anywhere_is_typed_and_healed, ()) {
     const auto r = b.driver.read_mc();
     if (at == 0) {
       RC_ASSERT(!r);
-      RC_ASSERT(r.error() == chip::error_of(status));
+      RC_ASSERT(r.error() == expected_error(status));
     } else {
       RC_ASSERT(r);
     }
@@ -74,7 +85,7 @@ RC_GTEST_PROP(tmp117_props, one_bus_failure_anywhere_is_typed_and_healed, ()) {
   } else {
     const auto r = b.driver.configure();
     RC_ASSERT(!r);
-    RC_ASSERT(r.error() == chip::error_of(status));
+    RC_ASSERT(r.error() == expected_error(status));
     RC_ASSERT(b.driver.configured() == configured_first);
   }
   b.bus.heal();

@@ -23,7 +23,7 @@ i2c::Status Driver::update(std::uint8_t reg, std::uint8_t mask, std::uint8_t val
 Result<FullScale> Driver::configure(FullScale fs) {
   std::uint8_t who = 0;
   const auto s = i2c::read_u8(port_, address_, reg::kWhoAmI, who);
-  if (s != i2c::Status::Ok) return error_of(s);
+  if (s != i2c::Status::Ok) return i2c::error_of<Error>(s);
   if (who != kWhoAmIValue) return Error::WrongDevice;
 
   struct Step {
@@ -41,7 +41,7 @@ Result<FullScale> Driver::configure(FullScale fs) {
   for (const auto& st : steps) {
     bool matches = false;
     const auto u = update(st.reg, st.mask, st.value, matches);
-    if (u != i2c::Status::Ok) return error_of(u);
+    if (u != i2c::Status::Ok) return i2c::error_of<Error>(u);
     if (!matches) return Error::ConfigMismatch;
   }
   configured_ = true;
@@ -53,7 +53,7 @@ Result<std::int16_t> Driver::read_rate_z() {
   if (!configured_) return Error::NotConfigured;
   std::array<std::uint8_t, 2> b{};
   const auto s = i2c::read_burst(port_, address_, reg::kGyroZoutH, b);
-  if (s != i2c::Status::Ok) return error_of(s);
+  if (s != i2c::Status::Ok) return i2c::error_of<Error>(s);
   return static_cast<std::int16_t>(static_cast<std::uint16_t>((unsigned{b[0]} << 8) | b[1]));
 }
 

@@ -30,6 +30,20 @@ struct Port {
 
 inline constexpr std::uint8_t kAddressMask = 0x7F;
 
+// A failed transaction as a driver's own error: every sensor driver's error enum names these
+// four cases, and a bus fault maps onto them the same way for each.
+template <class E>
+constexpr E error_of(Status s) {
+  switch (s) {
+    case Status::NoPort: return E::NoPort;
+    case Status::AddressNack: return E::AddressNack;
+    case Status::DataNack: return E::DataNack;
+    case Status::Ok:
+    case Status::BusError: break;
+  }
+  return E::BusError;
+}
+
 inline Status transfer(const Port& port, std::uint8_t address, std::span<const std::uint8_t> tx,
                        std::span<std::uint8_t> rx) {
   if (port.transfer == nullptr) return Status::NoPort;

@@ -24,17 +24,6 @@ enum class Error : std::uint8_t {
 template <class T>
 using Result = i2c::Result<T, Error>;
 
-constexpr Error error_of(i2c::Status s) {
-  switch (s) {
-    case i2c::Status::NoPort: return Error::NoPort;
-    case i2c::Status::AddressNack: return Error::AddressNack;
-    case i2c::Status::DataNack: return Error::DataNack;
-    case i2c::Status::Ok:
-    case i2c::Status::BusError: break;
-  }
-  return Error::BusError;
-}
-
 // What configure() writes (docs/sensors.md "ICM-20789: configuration"):
 // PWR_MGMT_1: SLEEP = 0, CLKSEL = 1 (PLL when ready, the datasheet's choice for full gyro
 // performance). CONFIG: DLPF_CFG = 2 (92 Hz bandwidth, 3.9 ms delay, 1 kHz internal rate),

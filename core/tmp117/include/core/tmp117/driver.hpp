@@ -24,17 +24,6 @@ enum class Error : std::uint8_t {
 template <class T>
 using Result = i2c::Result<T, Error>;
 
-constexpr Error error_of(i2c::Status s) {
-  switch (s) {
-    case i2c::Status::NoPort: return Error::NoPort;
-    case i2c::Status::AddressNack: return Error::AddressNack;
-    case i2c::Status::DataNack: return Error::DataNack;
-    case i2c::Status::Ok:
-    case i2c::Status::BusError: break;
-  }
-  return Error::BusError;
-}
-
 // The configuration this driver writes (docs/sensors.md "TMP117: conversion"): continuous
 // conversion (MOD = 00), 8 averages (AVG = 01), CONV = 010: one result every 250 ms, of
 // which 125 ms are the active conversion (datasheet Table 7-7). Alert mode, active-low ALERT
