@@ -153,7 +153,7 @@ void SimBoard::qemu_answer(const QemuImage::Message& m) {
           need(mosi.size() == 4, "encoder");
           const axis::EncoderReading& e = now.encoder[dev == 3 ? 0 : 1];
           const auto turns = static_cast<std::uint16_t>(e.turns);
-          const auto low = static_cast<std::uint16_t>(e.counts << 2 | (e.valid != 0 ? 3U : 0U));
+          const auto low = static_cast<std::uint16_t>(static_cast<unsigned>(e.counts) << 2U | (e.valid != 0 ? 3U : 0U));
           miso = {static_cast<std::uint8_t>(turns >> 8), static_cast<std::uint8_t>(turns),
                   static_cast<std::uint8_t>(low >> 8), static_cast<std::uint8_t>(low)};
           break;
