@@ -14,7 +14,17 @@
 //   9    endstop: bit 0 axis, bit 1 min/max, bit 2 level
 //   10   power: bit 0 USB, bit 1 charger, bits 2-4 battery level
 //   11   BLE status pins: bits 0-1
-//   12   TMC2130 chip reset (motor supply dip) on axis bit 0
+//   12   with bit 7 clear: TMC2130 chip reset (motor supply dip) on axis bit 0;
+//        with bit 7 set, an I2C sensor event (docs/sensors.md), bits 0-2:
+//          0 the TMP117 measures the next 2 bytes (signed) x 8 m°C
+//          1 the gyro's z-rate code is the next 2 bytes (signed)
+//          2 / 3 the TMP117 / the ICM-20789 taken off the bus or put back (toggle)
+//          4 the bus stuck (bits 3-4: BusError, DataNack, AddressNack) or, with 3, healed
+//          5 both sensors power-cycled (TMP117 back to 0x8000 and 1 s cycles, gyro asleep)
+//          6 the TMP117's Device_ID cycles 0x0117, 0x2117 (a later revision), 0x0118 (foreign)
+//          7 a foreign ICM-20789 WHO_AM_I, or the true one (toggle)
+//        and with bit 6 also set, then (next byte + 1) * 4 ticks that do not end when the
+//        board settles: the sensors' periods (250 ms reads, 100 ms retries) pass only in time
 //   13   power cut during a FRAM save: cut after 2k SPI bytes, SetAccel v, reboot
 //   14   orderly shutdown, then reboot
 //        (ops 13 and 14 past the reboot budget, kMaxReboots, are skipped)
@@ -46,6 +56,7 @@
 #include "core/tmc2130/fields.hpp"
 #include "models/echo/board_checker.hpp"
 #include "models/safety/board_monitor.hpp"
+#include "rig_sensors.hpp"
 #include "../script_reader.hpp"
 
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size)
@@ -117,10 +128,15 @@ constexpr bool kSettleCheck = false;
 Rig* fresh_rig() {
   static const Rig pristine;
   static Rig rig;
-  static_assert(sizeof(Rig) == 33296, "a Rig member was added or changed: reset it below");
+  static_assert(sizeof(Rig) == 33624, "a Rig member was added or changed: reset it below");
   rig.board.reset();
   rig.fram = pristine.fram;
   rig.tmc = pristine.tmc;
+  // The bus keeps its attached parts (this rig's own); only its fault and log are reset.
+  rig.tmp117 = pristine.tmp117;
+  rig.gyro = pristine.gyro;
+  rig.heal_bus();
+  rig.i2c.clear_log();
   rig.in = pristine.in;
   rig.tx.clear();
   rig.motor = pristine.motor;
@@ -149,7 +165,8 @@ struct Harness {
     // The model's boot facts include the set this boot loads, read before the board boots.
     const storage::ParameterSet stored = model::echo::stored_set(rig->fram);
     (void)rig->boot();
-    const model::echo::Boot facts = model::echo::boot_facts(*rig->board, rig->in, stored);
+    model::echo::Boot facts = model::echo::boot_facts(*rig->board, rig->in, stored);
+    facts.sensors = ap::board::test::sensors_of(*rig);
     checker.emplace(*rig->board, facts);
     monitor = model::safety::BoardMonitor{};
     monitor.booted(*rig->board);
@@ -175,7 +192,7 @@ struct Harness {
     // never leaves the board, and the model is replaced at the next power-up).
     if (!power_dies_this_tick) {
       const std::span<const model::echo::EchoBytes> sent(rig->tx.data() + sent_before, rig->tx.size() - sent_before);
-      for (const std::string& m : checker->after_tick(sent)) echo_disagrees(m, b.ticks());
+      for (const std::string& m : checker->after_tick(sent, ap::board::test::sensors_of(*rig))) echo_disagrees(m, b.ticks());
     }
     power_dies_this_tick = false;
     found.clear();
@@ -327,6 +344,51 @@ struct Harness {
     rig->in.ble_status2 = (b & 2U) != 0;
   }
 
+  // The sensors through their device models: any temperature and rate, parts leaving and
+  // coming back, a stuck bus, power cycles and foreign parts: every branch of the board's
+  // error policy, with the echo model predicting each from the models alone.
+  void sensor_op(std::uint8_t b, Reader& r) {
+    switch (b & 7U) {
+      case 0: {
+        const auto v = static_cast<std::int16_t>(r.u16());
+        rig->tmp117.chip.set_temperature_mc(std::int32_t{v} * 8);
+        break;
+      }
+      case 1: rig->gyro.chip.set_rate_code(static_cast<std::int16_t>(r.u16())); break;
+      case 2: rig->tmp117.present = !rig->tmp117.present; break;
+      case 3: rig->gyro.present = !rig->gyro.present; break;
+      case 4: {
+        static constexpr std::array<i2c::Status, 3> kStuck{i2c::Status::BusError, i2c::Status::DataNack,
+                                                          i2c::Status::AddressNack};
+        const unsigned k = (b >> 3) & 3U;
+        if (k < kStuck.size()) {
+          rig->fail_bus(kStuck[k]);
+        } else {
+          rig->heal_bus();
+        }
+        break;
+      }
+      case 5:
+        rig->tmp117.chip.power_on_reset();
+        rig->gyro.chip.power_on_reset();
+        break;
+      case 6: {
+        // A TMP117, a later silicon revision of it (accepted), a foreign part, and round.
+        const std::uint16_t id = rig->tmp117.chip.reg(ap::tmp117::Reg::DeviceId);
+        rig->tmp117.chip.set_device_id(id == 0x0117 ? 0x2117 : (id == 0x2117 ? 0x0118 : 0x0117));
+        break;
+      }
+      default:
+        rig->gyro.chip.set_who_am_i(rig->gyro.chip.reg(ap::icm20789::reg::kWhoAmI) == 0x03 ? 0x12 : 0x03);
+        break;
+    }
+    if ((b & 0x40U) != 0) {
+      // A settled board is not settled for its sensors: this wait runs to its end.
+      const std::int64_t n = (std::int64_t{r.u8()} + 1) * 4;
+      for (std::int64_t i = 0; i < n && budget_left(); ++i) tick();
+    }
+  }
+
   void chip_reset_op(std::uint8_t b) {
     const std::size_t a = b & 1U;
     rig->tmc[a].power_cycle();
@@ -385,7 +447,15 @@ struct Harness {
       case 9: endstop_op(r.u8()); break;
       case 10: power_op(r.u8()); break;
       case 11: ble_op(r.u8()); break;
-      case 12: chip_reset_op(r.u8()); break;
+      case 12: {
+        const std::uint8_t b = r.u8();
+        if ((b & 0x80U) != 0) {
+          sensor_op(b, r);
+        } else {
+          chip_reset_op(b);
+        }
+        break;
+      }
       case 13:
         if (reboot_budget_left()) {
           power_cut_op(r);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "board_rig.hpp"
+#include "rig_sensors.hpp"
 #include "protocol/codec/commands.hpp"
 #include "protocol/codec/crc16.hpp"
 #include "protocol/codec/subscribers.hpp"
@@ -113,6 +114,7 @@ rc::Gen<std::pair<std::uint8_t, std::uint8_t>> gen_slot() {
       {8, rc::gen::just(P{0, 0})},
       {1, rc::gen::just(P{1, 0})},
       {1, rc::gen::just(P{3, 0})},
+      {1, rc::gen::just(P{4, 0})},
       {2, rc::gen::map(rc::gen::element<std::uint8_t>(0, 1, 2, 3, 4, 5, 6, 7, 8, 19),
                        [](std::uint8_t i) { return P{8, i}; })},
       {1, rc::gen::just(P{5, 1})},
@@ -143,7 +145,13 @@ struct Endstop {
   bool max = false;
   bool on = false;
 };
-using Action = std::variant<SendFrame, SendDamaged, Ticks, Power, Ble, Endstop>;
+// The I2C sensors (docs/sensors.md): what the TMP117 measures, the gyro's z-rate code, a part
+// taken off the bus or put back, a stuck bus or a healed one.
+struct Sensor {
+  int kind = 0;  // 0 temperature, 1 rate, 2 TMP117 present, 3 gyro present, 4 bus
+  std::int32_t value = 0;
+};
+using Action = std::variant<SendFrame, SendDamaged, Ticks, Power, Ble, Endstop, Sensor>;
 
 rc::Gen<RawFrame> gen_frame() {
   return rc::gen::apply(
@@ -176,6 +184,9 @@ rc::Gen<Action> gen_action() {
                        [](int k) { return Action{Ble{(k & 1) != 0, k == 0 || k == 3}}; })},
       {2, rc::gen::apply([](std::size_t a, bool mx, bool on) { return Action{Endstop{a, mx, on}}; },
                          rc::gen::inRange<std::size_t>(0, 2), rc::gen::arbitrary<bool>(), rc::gen::arbitrary<bool>())},
+      {2, rc::gen::apply([](int k, std::int32_t v) { return Action{Sensor{k, v}}; },
+                         rc::gen::weightedOneOf<int>({{3, rc::gen::just(0)}, {3, rc::gen::just(1)}, {1, rc::gen::inRange(2, 5)}}),
+                         rc::gen::inRange<std::int32_t>(-300000, 300000))},
   });
 }
 
@@ -193,7 +204,7 @@ struct Bench {
       rig.in.encoder[1] = {50, 8192, 1};
     }
     rig.boot();
-    checker = std::make_unique<em::BoardChecker>(*rig.board, em::boot_facts(*rig.board, rig.in));
+    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::board::test::boot_facts_of(rig));
   }
 
   void rx(const Bytes& b) {
@@ -206,7 +217,7 @@ struct Bench {
     rig.tick();
     const std::span<const em::EchoBytes> sent(rig.tx.data() + before, rig.tx.size() - before);
     echoes_checked += sent.size();
-    for (auto& m : checker->after_tick(sent)) {
+    for (auto& m : checker->after_tick(sent, ap::board::test::sensors_of(rig))) {
       if (bad.size() < 8) bad.push_back(m);
     }
   }
@@ -235,6 +246,20 @@ struct Bench {
       rig.in.ble_status2 = b->s2;
     } else if (const auto* e = std::get_if<Endstop>(&act)) {
       (e->max ? rig.in.endstop_max : rig.in.endstop_min)[e->axis] = e->on ? 1 : 0;
+    } else if (const auto* z = std::get_if<Sensor>(&act)) {
+      switch (z->kind) {
+        case 0: rig.tmp117.chip.set_temperature_mc(z->value); break;
+        case 1: rig.gyro.chip.set_rate_code(static_cast<std::int16_t>(z->value % 32768)); break;
+        case 2: rig.tmp117.present = z->value >= 0; break;
+        case 3: rig.gyro.present = z->value >= 0; break;
+        default:
+          if (z->value % 3 == 0) {
+            rig.fail_bus(z->value > 0 ? i2c::Status::BusError : i2c::Status::DataNack);
+          } else {
+            rig.heal_bus();
+          }
+          break;
+      }
     }
   }
 };
@@ -251,6 +276,7 @@ std::string describe(const Action& a) {
            std::to_string(p->battery_mv);
   }
   if (const auto* b = std::get_if<Ble>(&a)) return "ble " + std::to_string(b->s1) + std::to_string(b->s2);
+  if (const auto* z = std::get_if<Sensor>(&a)) return "sensor " + std::to_string(z->kind) + " " + std::to_string(z->value);
   const auto& e = std::get<Endstop>(a);
   return std::string("endstop ") + (e.axis == 0 ? "x " : "y ") + (e.max ? "max " : "min ") + (e.on ? "on" : "off");
 }

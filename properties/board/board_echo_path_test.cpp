@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "board_rig.hpp"
+#include "rig_sensors.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "models/echo/board_checker.hpp"
 #include "protocol/codec/commands.hpp"
@@ -44,7 +45,7 @@ struct PathBench {
       rig.in.encoder[1] = {50, 8192, 1};  // 50.5 turns = 101 000 um
     }
     rig.boot();
-    checker = std::make_unique<em::BoardChecker>(*rig.board, em::boot_facts(*rig.board, rig.in));
+    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::board::test::boot_facts_of(rig));
   }
 
   // One tick, its echoes checked by the model (or replaced by `forge` to test the check).
@@ -59,7 +60,7 @@ struct PathBench {
       (void)frame::format_echo(e, sent.back());
     }
     checked += sent.size();
-    for (auto& m : checker->after_tick(sent)) bad.push_back(m);
+    for (auto& m : checker->after_tick(sent, ap::board::test::sensors_of(rig))) bad.push_back(m);
   }
   void ticks(int n) {
     for (int i = 0; i < n; ++i) tick();

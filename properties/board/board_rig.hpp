@@ -1,5 +1,6 @@
 // Test fixture for the board core: the core wired to the TMC2130 and MB85RS256B device
-// models, scripted inputs, captured UART echoes and motor outputs. Shared by the board tests
+// models and, on one simulated I2C bus, the TMP117 and ICM-20789 models; scripted inputs,
+// captured UART echoes and motor outputs. Shared by the board tests
 // and the board fuzz target (fuzz/board), so both drive the board exactly the same way.
 #pragma once
 
@@ -15,15 +16,34 @@
 #include "core/frame/command_codec.hpp"
 #include "core/frame/echo_codec.hpp"
 #include "models/fram/mb85rs256b.hpp"
+#include "models/i2c/bus.hpp"
+#include "models/icm20789/device.hpp"
 #include "models/tmc2130/device.hpp"
+#include "models/tmp117/device.hpp"
 
 namespace ap::board::test {
 
 using Echo = std::array<std::uint8_t, codec::kEchoLength>;
 
+// A part on the sensor bus that can be taken off it: absent, it acknowledges nothing
+// (AddressNack), as an unpowered chip or a broken trace does.
+template <class D>
+struct Plug : model::i2c::Device {
+  D chip{};
+  bool present = true;
+  i2c::Status transfer(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) override {
+    return present ? chip.transfer(address, tx, rx) : i2c::Status::AddressNack;
+  }
+};
+
 struct Rig {
   model::Mb85rs256b fram;
   std::array<model::tmc2130::Device, kAxes> tmc{};
+  Plug<model::tmp117::Device> tmp117{};
+  Plug<model::icm20789::Device> gyro{};
+  model::i2c::Bus i2c{};
+  // Every transaction on the bus fails like this (a stuck bus), until healed; nullopt: none.
+  std::optional<i2c::Status> bus_fault;
   Inputs in{};
   std::vector<Echo> tx;  // every echo the board sent, in order
   std::array<MotorOutput, kAxes> motor{};
@@ -32,6 +52,8 @@ struct Rig {
   std::uint16_t seq = 0;
 
   Rig() {
+    i2c.attach(tmp117);
+    i2c.attach(gyro);
     in.ble_status1 = false;  // Data Session open (Tab. 7-2: 0, 1)
     in.ble_status2 = true;
     in.battery_mv = 4000;
@@ -56,6 +78,7 @@ struct Rig {
     hw.ctx = this;
     hw.tmc = {tmc[0].port(), tmc[1].port()};
     hw.fram = fram.bus();
+    hw.i2c = i2c.port();
     hw.sample = &Rig::sample;
     hw.motor = &Rig::drive;
     hw.uart_tx = &Rig::uart;
@@ -68,12 +91,28 @@ struct Rig {
     return board->boot();
   }
 
+  // One 1 ms tick: the TMP117's conversions run on the same clock as the board.
   void tick(int n = 1) {
     for (int i = 0; i < n; ++i) {
+      tmp117.chip.advance_ms(1);
       board->tick();
       for (auto& d : tmc) d.clear_log();
+      i2c.clear_log();
     }
   }
+
+  // A stuck bus (every transaction fails with `s`) or a healed one.
+  void fail_bus(i2c::Status s) {
+    bus_fault = s;
+    i2c.fail_at(0, s, true);
+  }
+  void heal_bus() {
+    bus_fault.reset();
+    i2c.heal();
+  }
+  // How every transaction to each sensor ends now.
+  i2c::Status tmp117_answers() const { return bus_fault ? *bus_fault : (tmp117.present ? i2c::Status::Ok : i2c::Status::AddressNack); }
+  i2c::Status gyro_answers() const { return bus_fault ? *bus_fault : (gyro.present ? i2c::Status::Ok : i2c::Status::AddressNack); }
 
   static frame::CommandFrame frame_of(std::uint16_t s, codec::CommandId x, std::int32_t xd, codec::CommandId y,
                                       std::int32_t yd, frame::SubscriberSlots subs = {}) {

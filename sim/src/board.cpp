@@ -116,6 +116,8 @@ std::string led_word(std::uint8_t code) {
 }
 
 SimBoard::SimBoard(BoardOptions opt) : opt_(std::move(opt)) {
+  i2c_.attach(tmp117_);
+  i2c_.attach(gyro_);
   for (std::size_t a = 0; a < board::kAxes; ++a) {
     endstop_min_um_[a] = machine_.endstop_min_um;
     endstop_max_um_[a] = machine_.endstop_max_um;
@@ -161,6 +163,7 @@ void SimBoard::boot() {
   hw.ctx = this;
   hw.tmc = {tmc::SpiPort{&SimBoard::tmc_spi, this}, tmc::SpiPort{&SimBoard::tmc_spi_y, this}};
   hw.fram = storage::SpiBus{&SimBoard::fram_spi, this};
+  hw.i2c = i2c::Port{&SimBoard::i2c_port, this};
   hw.sample = &SimBoard::sample;
   hw.motor = &SimBoard::motor;
   hw.uart_tx = &SimBoard::uart_tx;
@@ -188,8 +191,13 @@ void SimBoard::boot() {
   // A fresh echo model per power-up: boot facts from what the board sampled at boot (the
   // encoders, set by the carriage) and the stored parameters (docs/echo-model.md). Bytes still
   // in the old core's receive ring died with it, so the model's link twin starts empty too.
-  const model::echo::Boot facts = model::echo::boot_facts(*board_, board_->inputs(), stored);
+  model::echo::Boot facts = model::echo::boot_facts(*board_, board_->inputs(), stored);
+  facts.sensors = sensors_now();
   checker_ = std::make_unique<model::echo::BoardChecker>(*board_, facts);
+  // The board's angle starts at 0 where the platform stands now; a turn in progress ends.
+  turned_codes_ = 0;
+  turn_to_codes_ = 0;
+  gyro_.set_rate_mdps(0);
   ++boots_;
   monitor_ = model::safety::BoardMonitor{};
   monitor_.booted(*board_);
@@ -221,8 +229,6 @@ void SimBoard::fill_inputs(board::Inputs& in) {
   // Power module: charging current positive, discharge negative (more while a motor runs).
   const bool running = out_[0].steps != 0 || out_[1].steps != 0;
   in.charge_ma = charger_ || usb_ ? 500 : (running ? -650 : -120);
-  in.temperature_mc = temperature_mc_;
-  in.rotation_mdeg = rotation_mdeg_;
   switch (ble_) {   // Tab. 7-2: (STATUS1_IND, STATUS2_IND)
     case Ble::Shutdown: in.ble_status1 = false; in.ble_status2 = false; break;
     case Ble::Standby: in.ble_status1 = true; in.ble_status2 = false; break;
@@ -244,8 +250,8 @@ namespace {
 // The inputs the echo model reads (models/echo env_of), field by field.
 bool same_env(const board::Inputs& a, const board::Inputs& b) {
   return a.endstop_min == b.endstop_min && a.endstop_max == b.endstop_max && a.usb == b.usb && a.charger == b.charger &&
-         a.battery_mv == b.battery_mv && a.charge_ma == b.charge_ma && a.temperature_mc == b.temperature_mc &&
-         a.rotation_mdeg == b.rotation_mdeg && a.ble_status1 == b.ble_status1 && a.ble_status2 == b.ble_status2;
+         a.battery_mv == b.battery_mv && a.charge_ma == b.charge_ma && a.ble_status1 == b.ble_status1 &&
+         a.ble_status2 == b.ble_status2;
 }
 }  // namespace
 
@@ -369,6 +375,46 @@ bool SimBoard::tmc_device(std::size_t a, const tmc::Datagram& tx, tmc::Datagram&
   return true;
 }
 
+i2c::Status SimBoard::i2c_transfer(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
+  // The image has no sensor bus yet (firmware/m4 board port): its core gets NoPort, so the
+  // mirror does too, and both report the sensors as not fitted.
+  if (on_qemu()) return i2c::Status::NoPort;
+  return i2c_device(address, tx, rx);
+}
+
+i2c::Status SimBoard::i2c_device(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
+  const i2c::Status s = i2c_.transfer(address, tx, rx);
+  i2c_.clear_log();   // the bus's log is a test hook; a run would only grow it
+  return s;
+}
+
+i2c::Status SimBoard::i2c_port(void* ctx, std::uint8_t address, std::span<const std::uint8_t> tx,
+                               std::span<std::uint8_t> rx) {
+  return static_cast<SimBoard*>(ctx)->i2c_transfer(address, tx, rx);
+}
+
+namespace {
+// docs/sim.md "rotate": the platform turns at 90 °/s, code 11790 at ±250 °/s (131 LSB per
+// °/s, DS-000169 Table 1): 90 m° per 1 ms tick. Every code sent is a multiple of 131, so each
+// tick turns the board's integrated angle by whole m° and the last one lands exactly.
+constexpr std::int64_t kGyroLsbPerDps = 131;
+constexpr std::int64_t kTurnMdegPerTick = 90;
+}  // namespace
+
+void SimBoard::sensors_tick() {
+  tmp117_.advance_ms(1);
+  const std::int64_t left = turn_to_codes_ - turned_codes_;
+  const std::int64_t step = std::clamp(left, -kTurnMdegPerTick * kGyroLsbPerDps, kTurnMdegPerTick * kGyroLsbPerDps);
+  // In m°/s: step / 131 m° per 1 ms tick; the model's nearest code is then exactly `step`.
+  gyro_.set_rate_mdps(static_cast<std::int32_t>(step / kGyroLsbPerDps * 1000));
+  turned_codes_ += step;
+}
+
+model::echo::Sensors SimBoard::sensors_now() const {
+  const i2c::Status answers = on_qemu() ? i2c::Status::NoPort : i2c::Status::Ok;
+  return model::echo::sensors_of(tmp117_, answers, gyro_, answers);
+}
+
 bool SimBoard::tmc_spi(void* ctx, const tmc::Datagram& tx, tmc::Datagram& rx) {
   return static_cast<SimBoard*>(ctx)->tmc_transfer(0, tx, rx);
 }
@@ -413,6 +459,7 @@ void SimBoard::tick() {
   if (button_ && now_us_ >= button_until_us_) button_ = false;
   tick_echoes_.clear();
   const std::uint64_t samples = samples_;
+  sensors_tick();
   if (on_qemu()) qemu_tick();
   board_->tick();
   if (on_qemu()) qemu_after_tick(false);
@@ -423,7 +470,7 @@ void SimBoard::tick() {
   if (samples_ != samples + 1) echo_disagreement("the core sampled its inputs " + std::to_string(samples_ - samples) + " times in a tick");
   if (!same_env(board_->inputs(), sampled_)) echo_disagreement("the core's inputs differ from what the hardware delivered");
   echoes_checked_ += tick_echoes_.size();
-  for (const std::string& m : checker_->after_tick(tick_echoes_)) echo_disagreement(m);
+  for (const std::string& m : checker_->after_tick(tick_echoes_, sensors_now())) echo_disagreement(m);
   trace_tick();
   const std::uint16_t w = expander_word();
   if (w != expander_last_ && wave_) {
@@ -677,10 +724,16 @@ std::string SimBoard::env(const std::string& line) {
       (k == "charger" ? charger_ : usb_) = to_int(w[1]) != 0;
     } else if (k == "temperature") {
       need(2);
-      temperature_mc_ = static_cast<std::int32_t>(to_int(w[1]));
+      tmp117_.set_temperature_mc(static_cast<std::int32_t>(std::clamp<std::int64_t>(to_int(w[1]), -300'000, 300'000)));
     } else if (k == "rotate") {
       need(2);
-      rotation_mdeg_ = static_cast<std::int32_t>(((to_int(w[1]) % 360'000) + 360'000) % 360'000);
+      // The shorter way from where the turn stands now (the board's frame: 0 at its power-up)
+      // to the angle asked for; a half turn goes forward.
+      const std::int64_t want = ((to_int(w[1]) % 360'000) + 360'000) % 360'000;
+      const std::int64_t now = ((turned_codes_ / kGyroLsbPerDps) % 360'000 + 360'000) % 360'000;
+      std::int64_t delta = (want - now + 360'000) % 360'000;
+      if (delta > 180'000) delta -= 360'000;
+      turn_to_codes_ = turned_codes_ + delta * kGyroLsbPerDps;
     } else if (k == "ble") {
       need(2);
       if (w[1] == "shutdown") ble_ = Ble::Shutdown;
@@ -699,8 +752,11 @@ std::string SimBoard::env(const std::string& line) {
       button_until_us_ = now_us_ + (w[1] == "hold" ? 3'000'000 : 200'000);
     } else if (k == "reboot") {
       need(1);
-      // Power cycle: the drivers lose their registers, the FRAM keeps its contents.
+      // Power cycle: the drivers and the sensors lose their registers, the FRAM keeps its
+      // contents.
       for (auto& d : tmc_) d.power_cycle();
+      tmp117_.power_on_reset();
+      gyro_.power_on_reset();
       if (board_) boot();
     } else {
       return "err unknown environment command '" + k + "'";

@@ -26,8 +26,8 @@ dds::Telemetry telemetry_of(SimBoard& sb, std::uint32_t id) {
   t.low_battery = b.block() == board::Block::Battery;
   t.battery_mv = in.battery_mv;
   t.charge_ma = static_cast<std::int16_t>(std::clamp(in.charge_ma, -32768, 32767));
-  t.temperature_mc = in.temperature_mc;
-  t.rotation_mdeg = in.rotation_mdeg;
+  t.temperature_mc = b.temperature_mc();
+  t.rotation_mdeg = b.rotation_mdeg();
   for (std::size_t a = 0; a < board::kAxes; ++a) {
     const auto ax = static_cast<board::Axis>(a);
     const axis::State& s = b.axis_state(ax);

@@ -34,6 +34,9 @@ constexpr std::int64_t mres_of(std::uint16_t microsteps) {
 
 bool moving(const axis::State& s) { return s.phase != axis::Phase::Stop; }
 
+// docs/protocol.md, the subscriber table: -99999 .. 999999 m°C (the table is indexed by ID).
+constexpr c::Range kTemperatureWire = c::kSubscribers[static_cast<std::size_t>(c::SubscriberId::TemperatureMc)].range;
+
 }  // namespace
 
 Derived derive(const st::ParameterSet& p) {
@@ -78,7 +81,11 @@ Derived derive(const st::ParameterSet& p) {
 }
 
 Board::Board(const Hardware& hw)
-    : hw_(hw), store_(hw.fram), drivers_{tmc::Driver(hw.tmc[0]), tmc::Driver(hw.tmc[1])} {
+    : hw_(hw),
+      store_(hw.fram),
+      drivers_{tmc::Driver(hw.tmc[0]), tmc::Driver(hw.tmc[1])},
+      tmp117_(hw.i2c, tmp117::kAddressGnd),
+      gyro_(hw.i2c, icm20789::kAddressAd0Low) {
   table_.install(c::CommandId::Nop, &Board::on_nop);
   table_.install(c::CommandId::Stop, &Board::on_stop);
   table_.install(c::CommandId::Jog, &Board::on_jog);
@@ -144,6 +151,10 @@ BootResult Board::boot() {
     axes_[i].latch_min = in_.endstop_min[i] != 0 ? 1 : 0;
     axes_[i].latch_max = in_.endstop_max[i] != 0 ? 1 : 0;
   }
+  // Last, so a sensor that fails its configure() shows its fault rather than being hidden
+  // behind a storage or driver fault of the same boot.
+  configure_temperature();
+  configure_gyro();
   return r;
 }
 
@@ -172,6 +183,7 @@ void Board::tick() {
   receive();
   step_axes();
   check_drivers();
+  read_sensors();
   main_state_ = block_ != Block::None ? MainState::Blocked : (param_cycle_ ? MainState::ParamSet : MainState::UserControl);
   // The refusals are final once the axes have stepped (the axis core refuses too).
   if (taken_this_cycle_) last_outcome_ = Outcome{block_, refused_};
@@ -365,6 +377,101 @@ void Board::check_drivers() {
   }
 }
 
+// ---- I2C sensors (docs/sensors.md "What the board does on an I2C error") ----------------
+// After the axes: an I2C transaction may take a few hundred microseconds, and the step
+// outputs of the tick must not wait for it. Before the echoes, so they carry this tick's
+// angle and any fault a sensor latched in it.
+
+void Board::configure_temperature() {
+  const auto r = tmp117_.configure();
+  if (r) {
+    sensors_.temperature = SensorState::Ok;
+    sensors_.temperature_misses = 0;
+    return;
+  }
+  // No transfer function: a board built without the sensor bus, as any Hardware part may be.
+  if (r.error() == tmp117::Error::NoPort) {
+    sensors_.temperature = SensorState::Unwired;
+    return;
+  }
+  ++sensors_.temperature_errors;
+  // A foreign part at the address is never written again (docs/sensors.md): rewriting it
+  // blindly is worse than having no temperature.
+  sensors_.temperature = r.error() == tmp117::Error::WrongDeviceId ? SensorState::Foreign : SensorState::Lost;
+  fault_ = kFaultTemperature + static_cast<std::int32_t>(r.error());
+}
+
+void Board::configure_gyro() {
+  const auto r = gyro_.configure(icm20789::FullScale::Dps250);
+  if (r) {
+    sensors_.gyro = SensorState::Ok;
+    sensors_.gyro_misses = 0;
+    // A sample from before an outage says nothing about the rate after it.
+    gyro_held_ = 0;
+    return;
+  }
+  if (r.error() == icm20789::Error::NoPort) {
+    sensors_.gyro = SensorState::Unwired;
+    return;
+  }
+  ++sensors_.gyro_errors;
+  sensors_.gyro = r.error() == icm20789::Error::WrongDevice ? SensorState::Foreign : SensorState::Lost;
+  fault_ = kFaultGyro + static_cast<std::int32_t>(r.error());
+}
+
+void Board::read_sensors() {
+  read_gyro();
+  read_temperature();
+}
+
+void Board::read_gyro() {
+  if (sensors_.gyro == SensorState::Lost) {
+    // The angle is no longer trusted and stays where it stopped; a recovered chip continues
+    // from there (the PC may re-reference it).
+    if (ticks_ % kGyroRetryPeriod == 0) configure_gyro();
+    return;
+  }
+  if (sensors_.gyro != SensorState::Ok) return;
+  const auto r = gyro_.read_rate_z();
+  if (r) {
+    sensors_.gyro_misses = 0;
+    gyro_held_ = *r;
+    rotation_.step(*r);
+    return;
+  }
+  ++sensors_.gyro_errors;
+  if (++sensors_.gyro_misses >= kGyroMissLimit) {
+    sensors_.gyro = SensorState::Lost;
+    fault_ = kFaultGyro + static_cast<std::int32_t>(r.error());
+    return;
+  }
+  // One sample per tick (1 kHz behind the 92 Hz filter): the previous one is the best
+  // estimate of the missing one.
+  rotation_.step(gyro_held_);
+}
+
+void Board::read_temperature() {
+  if (sensors_.temperature == SensorState::Lost) {
+    if (ticks_ % kTemperatureRetryPeriod == 0) configure_temperature();
+    return;
+  }
+  // One read per conversion (250 ms, docs/sensors.md "Conversion and averaging").
+  if (sensors_.temperature != SensorState::Ok || ticks_ % kTemperaturePeriod != 0) return;
+  const auto r = tmp117_.read_mc();
+  if (r) {
+    sensors_.temperature_misses = 0;
+    sensors_.temperature_valid = true;
+    temperature_mc_ = *r;
+    return;
+  }
+  // NoConversionYet counts like a bus error: either way there is no temperature this period.
+  ++sensors_.temperature_errors;
+  if (++sensors_.temperature_misses >= kTemperatureMissLimit) {
+    sensors_.temperature = SensorState::Lost;
+    fault_ = kFaultTemperature + static_cast<std::int32_t>(r.error());
+  }
+}
+
 void Board::send_echoes() {
   const frame::EchoSource now{this, &Board::echo_axis, &Board::echo_subscriber};
   const frame::EchoSource replay{this, &Board::echo_axis_replay, &Board::echo_subscriber};
@@ -440,8 +547,13 @@ std::int32_t Board::subscriber(frame::SubscriberSlot slot) {
     case c::SubscriberId::None: return 0;
     case c::SubscriberId::BatteryMv: return in_.battery_mv;
     case c::SubscriberId::ChargeMa: return in_.charge_ma;
-    case c::SubscriberId::TemperatureMc: return in_.temperature_mc;
-    case c::SubscriberId::RotationMdeg: return in_.rotation_mdeg;
+    case c::SubscriberId::TemperatureMc: {
+      // The register reaches -256 °C and the wire field stops at -99.999 °C: clamped, never
+      // wrapped (docs/sensors.md "Wire range"). Every temperature in the sensor's specified
+      // range fits.
+      return std::clamp(temperature_mc_, kTemperatureWire.min, kTemperatureWire.max);
+    }
+    case c::SubscriberId::RotationMdeg: return rotation_.mdeg();
     case c::SubscriberId::EncoderUm: {
       const auto rev = static_cast<std::int32_t>(axis::usteps_per_rev(derived_.mech));
       const axis::StartPosition p = axis::encoder_to_usteps(in_.encoder[ax], rev);

@@ -55,8 +55,6 @@ Env env_of(const board::Inputs& in) {
   e.charger = in.charger;
   e.battery_mv = in.battery_mv;
   e.charge_ma = in.charge_ma;
-  e.temperature_mc = in.temperature_mc;
-  e.rotation_mdeg = in.rotation_mdeg;
   e.ble_status1 = in.ble_status1;
   e.ble_status2 = in.ble_status2;
   for (std::size_t a = 0; a < kAxes; ++a) {
@@ -64,6 +62,22 @@ Env env_of(const board::Inputs& in) {
     e.endstop_max[a] = in.endstop_max[a] != 0;
   }
   return e;
+}
+
+Sensors sensors_of(const model::tmp117::Device& t, ap::i2c::Status t_answers, const model::icm20789::Device& g,
+                   ap::i2c::Status g_answers) {
+  Sensors s;
+  s.tmp117.answers = t_answers;
+  // docs/sensors.md: only DID[11:0] identifies the part; the revision nibble may differ.
+  s.tmp117.identity_ok = (t.reg(ap::tmp117::Reg::DeviceId) & 0x0FFFU) == 0x0117U;
+  s.temp_result = t.reg(ap::tmp117::Reg::TempResult);
+  s.gyro.answers = g_answers;
+  namespace reg = ap::icm20789::reg;
+  s.gyro.identity_ok = g.reg(reg::kWhoAmI) == 0x03;  // DS-000169
+  // GYRO_ZOUT_H/_L: what a read gives, the ±250 °/s code while awake.
+  const auto code = static_cast<std::uint16_t>((unsigned{g.reg(reg::kGyroZoutH)} << 8) | g.reg(reg::kGyroZoutL));
+  s.gyro_z = static_cast<std::int16_t>(code);
+  return s;
 }
 
 Motion motion_of(const board::Board& b) {
@@ -82,9 +96,11 @@ Motion motion_of(const board::Board& b) {
   return m;
 }
 
-std::vector<std::string> BoardChecker::after_tick(std::span<const EchoBytes> sent) {
+std::vector<std::string> BoardChecker::after_tick(std::span<const EchoBytes> sent, const Sensors& sensors) {
   std::vector<std::string> bad;
-  model_.begin_tick(env_of(board_.inputs()));
+  Env env = env_of(board_.inputs());
+  env.sensors = sensors;
+  model_.begin_tick(env);
   for (const FrameEvent& ev : link_.tick()) model_.frame(ev);
   const auto want = model_.end_tick(motion_of(board_));
   const std::string at = "tick " + std::to_string(board_.ticks()) + ": ";

@@ -27,6 +27,33 @@ constexpr std::uint32_t kWatchdogTicks = 300;
 constexpr std::int32_t kBatteryHysteresisMv = 100;
 constexpr std::int32_t kFaultBadParams = 4000;   // docs/board.md "Power-up": defaults used
 
+// docs/sensors.md "What the board does on an I2C error" and "Fault codes".
+constexpr std::int32_t kFaultTemperature = 5000;
+constexpr std::int32_t kFaultGyro = 6000;
+constexpr std::int32_t kErrWrongDevice = 4;        // WrongDeviceId / WrongDevice
+constexpr std::int32_t kErrNoConversionYet = 7;
+constexpr std::uint32_t kTempPeriodTicks = 250;    // one read per 250 ms conversion
+constexpr std::uint32_t kTempMisses = 3;
+constexpr std::uint32_t kTempRetryTicks = 1000;
+constexpr std::uint32_t kGyroMisses = 10;
+constexpr std::uint32_t kGyroRetryTicks = 100;
+constexpr std::int64_t kGyroLsbPerDps = 131;       // ±250 °/s (DS-000169 Table 1)
+constexpr std::int32_t kTempWireMin = -99999;      // docs/protocol.md, subscriber "temp"
+constexpr std::int32_t kTempWireMax = 999999;
+
+// The typed error a bus outcome becomes (docs/sensors.md "The I2C port"): AddressNack 1,
+// DataNack 2, BusError 3.
+std::int32_t bus_error(ap::i2c::Status s) {
+  switch (s) {
+    case ap::i2c::Status::AddressNack: return 1;
+    case ap::i2c::Status::DataNack: return 2;
+    case ap::i2c::Status::NoPort: return 0;
+    case ap::i2c::Status::Ok:
+    case ap::i2c::Status::BusError: break;
+  }
+  return 3;
+}
+
 std::string status_name(EchoStatus s) {
   const auto* info = codec::find_status(static_cast<std::uint32_t>(s));
   return info != nullptr ? std::string(info->key) : "status" + std::to_string(static_cast<int>(s));
@@ -115,6 +142,92 @@ EchoModel::EchoModel(const Boot& boot) {
       fault_ = kFaultBadParams;
     }
   }
+  // docs/board.md "Step counter and boot": the sensors are configured last.
+  configure_temperature(boot.sensors);
+  configure_gyro(boot.sensors);
+}
+
+// ---------------------------------------------------------------- the I2C sensors
+void EchoModel::configure_temperature(const Sensors& s) {
+  const SensorDevice& d = s.tmp117;
+  if (d.answers == ap::i2c::Status::NoPort) {  // no sensor bus: not driven, no fault
+    temp_mode_ = SensorMode::Unwired;
+    return;
+  }
+  if (d.answers != ap::i2c::Status::Ok) {
+    temp_mode_ = SensorMode::Lost;
+    fault_ = kFaultTemperature + bus_error(d.answers);
+  } else if (!d.identity_ok) {
+    temp_mode_ = SensorMode::Foreign;
+    fault_ = kFaultTemperature + kErrWrongDevice;
+  } else {
+    temp_mode_ = SensorMode::Ok;
+    temp_misses_ = 0;
+  }
+}
+
+void EchoModel::configure_gyro(const Sensors& s) {
+  const SensorDevice& d = s.gyro;
+  if (d.answers == ap::i2c::Status::NoPort) {
+    gyro_mode_ = SensorMode::Unwired;
+    return;
+  }
+  if (d.answers != ap::i2c::Status::Ok) {
+    gyro_mode_ = SensorMode::Lost;
+    fault_ = kFaultGyro + bus_error(d.answers);
+  } else if (!d.identity_ok) {
+    gyro_mode_ = SensorMode::Foreign;
+    fault_ = kFaultGyro + kErrWrongDevice;
+  } else {
+    gyro_mode_ = SensorMode::Ok;
+    gyro_misses_ = 0;
+    gyro_held_ = 0;
+  }
+}
+
+// After the axes stepped, before the echoes (docs/board.md "One cycle"): the gyro every tick,
+// then the TMP117 once per conversion period; a lost sensor only retries its configure().
+void EchoModel::sensors_tick() {
+  const Sensors& s = env_.sensors;
+  if (gyro_mode_ == SensorMode::Lost) {
+    if (ticks_ % kGyroRetryTicks == 0) configure_gyro(s);
+  } else if (gyro_mode_ == SensorMode::Ok) {
+    if (s.gyro.answers == ap::i2c::Status::Ok) {
+      gyro_misses_ = 0;
+      gyro_held_ = s.gyro_z;
+      gyro_sum_ += s.gyro_z;
+    } else if (++gyro_misses_ >= kGyroMisses) {
+      gyro_mode_ = SensorMode::Lost;  // the angle stops; nothing integrated in this tick
+      fault_ = kFaultGyro + bus_error(s.gyro.answers);
+    } else {
+      gyro_sum_ += gyro_held_;  // a failed read holds the last good sample
+    }
+  }
+  if (temp_mode_ == SensorMode::Lost) {
+    if (ticks_ % kTempRetryTicks == 0) configure_temperature(s);
+  } else if (temp_mode_ == SensorMode::Ok && ticks_ % kTempPeriodTicks == 0) {
+    std::int32_t err = 0;
+    if (s.tmp117.answers != ap::i2c::Status::Ok) {
+      err = bus_error(s.tmp117.answers);
+    } else if (s.temp_result == 0x8000) {
+      err = kErrNoConversionYet;  // -256 °C: the reset code, no conversion finished
+    } else {
+      // 7.8125 m°C per LSB = 1000/128, two's complement, nearest m°C, halves away from zero.
+      temperature_mc_ = static_cast<std::int32_t>(
+          div_round_nearest(static_cast<std::int64_t>(static_cast<std::int16_t>(s.temp_result)) * 1000, 128));
+      temp_misses_ = 0;
+    }
+    if (err != 0 && ++temp_misses_ >= kTempMisses) {
+      temp_mode_ = SensorMode::Lost;
+      fault_ = kFaultTemperature + err;
+    }
+  }
+}
+
+std::int32_t EchoModel::rotation_mdeg() const {
+  // floor(sum / 131) m°, as a whole-turn remainder in [0, 360000).
+  const std::int64_t mdeg = div_floor(gyro_sum_, kGyroLsbPerDps);
+  return static_cast<std::int32_t>(((mdeg % 360000) + 360000) % 360000);
 }
 
 // ---------------------------------------------------------------- begin of cycle (§7.5.1)
@@ -751,6 +864,7 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
     x.last = m;
   }
   path_end_tick(motion);
+  sensors_tick();
   if (taken_this_tick_) {
     last_block_ = block_;
     for (std::size_t a = 0; a < kAxes; ++a) last_refused_[a] = ax_[a].refused;
@@ -819,8 +933,10 @@ Expected EchoModel::build(std::size_t i) const {
       case codec::SubscriberId::None: o.data = 0; break;
       case codec::SubscriberId::BatteryMv: o.data = env_.battery_mv; break;
       case codec::SubscriberId::ChargeMa: o.data = env_.charge_ma; break;
-      case codec::SubscriberId::TemperatureMc: o.data = env_.temperature_mc; break;
-      case codec::SubscriberId::RotationMdeg: o.data = env_.rotation_mdeg; break;
+      case codec::SubscriberId::TemperatureMc:
+        o.data = std::clamp(temperature_mc_, kTempWireMin, kTempWireMax);  // docs/sensors.md "Wire range"
+        break;
+      case codec::SubscriberId::RotationMdeg: o.data = rotation_mdeg(); break;
       case codec::SubscriberId::Param:
         switch (s.arg) {  // docs/storage.md map ids
           case 0: o.data = p_.accel; break;

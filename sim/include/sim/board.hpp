@@ -4,8 +4,9 @@
 //   encoders (14-bit position + turn count, read by eq. 7-2 at boot), four Hall endstops
 //   driven by the carriage position (or forced), a GPIO expander that carries them, the BLE
 //   module status pins (Tab. 7-2), the power module (battery mV, charger, USB flag, charge
-//   current), the TMP117 temperature, the IMU rotation, the user button and the RGB LED
-//   (Tab. 7-4), plus a carriage per axis moved by the STEP/DIR/ENA outputs.
+//   current), the TMP117 and ICM-20789 device models on one I2C bus (the platform turned
+//   through the gyro's rate), the user button and the RGB LED (Tab. 7-4), plus a carriage per
+//   axis moved by the STEP/DIR/ENA outputs.
 //
 // Time is virtual: advance_to(t_us) runs 1 ms board ticks up to t. Everything the board sends
 // on its UART TX line is queued and handed out by take_tx(). Harness-side commands (the
@@ -27,7 +28,10 @@
 #include "models/echo/board_checker.hpp"
 #include "models/safety/board_monitor.hpp"
 #include "models/fram/mb85rs256b.hpp"
+#include "models/i2c/bus.hpp"
+#include "models/icm20789/device.hpp"
 #include "models/tmc2130/device.hpp"
+#include "models/tmp117/device.hpp"
 #include "models/mechanics/mechanics.hpp"
 #include "sim/qemu_image.hpp"
 #include "sim/trace.hpp"
@@ -143,10 +147,18 @@ class SimBoard {
   static bool tmc_spi(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
   static bool tmc_spi_y(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
   static bool fram_spi(void* ctx, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept;
+  static i2c::Status i2c_port(void* ctx, std::uint8_t address, std::span<const std::uint8_t> tx,
+                              std::span<std::uint8_t> rx);
   bool tmc_transfer(std::size_t a, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
+  i2c::Status i2c_transfer(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx);
   // The device models' side of a transfer (the mirror's transfers replay the image's instead).
   bool tmc_device(std::size_t a, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
   bool fram_device(std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept;
+  // One transaction on the sensor bus (TMP117 at 0x48, ICM-20789 at 0x68).
+  i2c::Status i2c_device(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx);
+  // The platform's turn and the TMP117's clock, before each board tick (docs/sim.md "rotate").
+  void sensors_tick();
+  [[nodiscard]] model::echo::Sensors sensors_now() const;
   void motor_effect(std::size_t a, const board::MotorOutput& o);
   void tx_effect(std::span<const std::uint8_t> bytes);
 
@@ -203,6 +215,9 @@ class SimBoard {
   Machine machine_;
   model::Mb85rs256b fram_;
   std::array<model::tmc2130::Device, board::kAxes> tmc_{};
+  model::tmp117::Device tmp117_{};
+  model::icm20789::Device gyro_{};
+  model::i2c::Bus i2c_{};   // both sensors attached in the constructor
   std::unique_ptr<board::Board> board_;
   std::int64_t now_us_ = 0;
   std::uint64_t ticks_ = 0;
@@ -213,8 +228,10 @@ class SimBoard {
   bool usb_ = false;
   bool charger_ = false;
   std::uint16_t battery_mv_ = 4000;
-  std::int32_t temperature_mc_ = 25'000;
-  std::int32_t rotation_mdeg_ = 0;
+  // The platform's rotation since the board's power-up, and where `rotate` turns it, in gyro
+  // codes summed over ticks (1/131 m° at ±250 °/s; always whole m°, docs/sim.md).
+  std::int64_t turned_codes_ = 0;
+  std::int64_t turn_to_codes_ = 0;
   bool button_ = false;
   std::int64_t button_until_us_ = 0;
   std::array<std::array<std::int8_t, 2>, board::kAxes> endstop_force_{};   // [axis][min,max]: -1 off, 0 auto, 1 on

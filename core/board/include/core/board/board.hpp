@@ -1,9 +1,10 @@
 // The board core: the main state machine of seed-000.md §4.7 (blocked / user control /
 // parameter setting) tying the frame receive path, the callback table, both axes, the
-// parameter store and the two TMC2130 drivers together behind a narrow hardware interface.
+// parameter store, the two TMC2130 drivers and the two I2C sensors (TMP117 board
+// temperature, ICM-20789 platform rotation) together behind a narrow hardware interface.
 //
-// It is pure and deterministic: every input arrives through Hardware::sample() or
-// uart_rx(), every output leaves through Hardware's function pointers, and time is the
+// It is pure and deterministic: every input arrives through Hardware::sample(), the I2C
+// port or uart_rx(), every output leaves through Hardware's function pointers, and time is the
 // number of tick() calls (one per 1 ms control tick). The firmware, the simulated board,
 // the tests and the fuzzers all drive this same class. docs/board.md has the cycle order
 // and the decisions on the seed's gaps (G14-G16, G23, G24).
@@ -22,9 +23,13 @@
 #include "core/frame/callback_table.hpp"
 #include "core/frame/frames.hpp"
 #include "core/frame/stream_framer.hpp"
+#include "core/i2c/port.hpp"
+#include "core/icm20789/driver.hpp"
+#include "core/icm20789/rotation.hpp"
 #include "core/path/executor.hpp"
 #include "core/storage/store.hpp"
 #include "core/tmc2130/driver.hpp"
+#include "core/tmp117/driver.hpp"
 
 namespace ap::board {
 
@@ -32,7 +37,9 @@ using frame::Axis;
 inline constexpr std::size_t kAxes = 2;
 
 // Everything the board reads at the start of a cycle. Levels, not edges: the board keeps
-// its own memory (endstop latches live in the axis state, battery hysteresis here).
+// its own memory (endstop latches live in the axis state, battery hysteresis here). The
+// temperature and the rotation are not here: the board reads them itself over the I2C port
+// (docs/sensors.md).
 struct Inputs {
   std::array<std::uint8_t, kAxes> endstop_min{};  // 1 = Hall switch active
   std::array<std::uint8_t, kAxes> endstop_max{};
@@ -40,8 +47,6 @@ struct Inputs {
   bool charger = false;  // charger connected
   std::uint16_t battery_mv = 4000;
   std::int32_t charge_ma = 0;
-  std::int32_t temperature_mc = 25000;
-  std::int32_t rotation_mdeg = 0;
   bool ble_status1 = false;  // STATUS1_IND, STATUS2_IND (Tab. 7-2): (0,1) = Data Session open
   bool ble_status2 = true;
   std::array<axis::EncoderReading, kAxes> encoder{};
@@ -62,6 +67,10 @@ struct Hardware {
   void* ctx = nullptr;
   std::array<tmc2130::SpiPort, kAxes> tmc{};  // one chip select per driver
   storage::SpiBus fram{nullptr, nullptr};
+  // The sensor bus: TMP117 at 0x48 and ICM-20789 at 0x68 (docs/sensors.md). Without a
+  // transfer function the board was built without the sensors: they are not driven, and no
+  // fault is raised for them.
+  i2c::Port i2c{};
   void (*sample)(void* ctx, Inputs& in) = nullptr;
   void (*motor)(void* ctx, Axis axis, const MotorOutput& out) = nullptr;
   void (*uart_tx)(void* ctx, std::span<const std::uint8_t> bytes) = nullptr;
@@ -97,11 +106,41 @@ inline constexpr std::int32_t kFaultStorage = 1000;     // + storage::StoreStatu
 inline constexpr std::int32_t kFaultDriverX = 2000;     // + tmc2130::Error
 inline constexpr std::int32_t kFaultDriverY = 3000;     // + tmc2130::Error
 inline constexpr std::int32_t kFaultBadParams = 4000;   // loaded set does not convert: defaults used
+inline constexpr std::int32_t kFaultTemperature = 5000; // + tmp117::Error (docs/sensors.md)
+inline constexpr std::int32_t kFaultGyro = 6000;        // + icm20789::Error
 
 inline constexpr std::uint16_t kBatteryHysteresisMv = 100;  // G23: unblock at threshold + 100 mV
 inline constexpr std::size_t kRxCapacity = 256;             // > 6 command frames
 inline constexpr std::size_t kMaxEchoesPerCycle = 4;
 inline constexpr std::uint32_t kDriverCheckPeriod = 100;    // ticks between GSTAT checks per driver
+
+// The I2C sensors' schedule and error policy (docs/sensors.md "What the board does on an I2C
+// error"): the TMP117 is read once per conversion period and its configure() retried once a
+// second; the gyro is read every tick and retried every 100 ms.
+inline constexpr std::uint32_t kTemperaturePeriod = tmp117::kConversionPeriodMs;  // ticks
+inline constexpr std::uint32_t kTemperatureMissLimit = 3;    // periods in a row without a reading
+inline constexpr std::uint32_t kTemperatureRetryPeriod = 1000;
+inline constexpr std::uint32_t kGyroMissLimit = 10;          // failed reads in a row
+inline constexpr std::uint32_t kGyroRetryPeriod = 100;
+// The temperature before the first good reading: Temp_Result's reset code (-256 °C, outside
+// the sensor's -55..150 °C), which the subscriber clamps to the wire's -99999.
+inline constexpr std::int32_t kNoTemperatureMc = tmp117::kMinMilliCelsius;
+
+// Unwired: Hardware::i2c has no transfer function. Ok: configured, read on schedule. Lost:
+// failed, fault latched, configure() retried. Foreign: a different part answers at the
+// address; latched and never written again.
+enum class SensorState : std::uint8_t { Unwired, Ok, Lost, Foreign };
+
+struct SensorStatus {
+  SensorState temperature = SensorState::Unwired;
+  SensorState gyro = SensorState::Unwired;
+  bool temperature_valid = false;      // a good reading since power-up
+  std::uint32_t temperature_misses = 0;  // periods in a row without a good reading
+  std::uint32_t gyro_misses = 0;         // failed reads in a row
+  std::uint32_t temperature_errors = 0;  // every failed configure or read, wrapping
+  std::uint32_t gyro_errors = 0;
+  friend constexpr bool operator==(const SensorStatus&, const SensorStatus&) = default;
+};
 
 struct BootResult {
   storage::BootReport store;
@@ -127,7 +166,7 @@ class Board {
 
   // Power-up (§4.6): load the parameters (newest valid A/B copy), initialise both drivers
   // with the stored currents and microsteps, seed each step counter from its encoder or the
-  // saved counter. Call once before the first tick().
+  // saved counter, configure both I2C sensors. Call once before the first tick().
   BootResult boot();
 
   // The UART receive interrupt: bytes are only stored; the framer runs in tick().
@@ -136,7 +175,8 @@ class Board {
   // One control cycle (1 ms). Order: sample inputs; begin-of-cycle checks (block causes,
   // BLE status); frames from the receive ring through framer -> gate -> callback table;
   // link watchdog; both axes stepped and their outputs driven; periodic driver check;
-  // the echoes of this cycle built and sent last, after the commands took effect.
+  // the I2C sensors (gyro every tick, temperature every 250); the echoes of this cycle built
+  // and sent last, after the commands took effect.
   void tick();
 
   // Orderly shutdown: writes both step counters with the validity flag (only at rest).
@@ -155,6 +195,11 @@ class Board {
   const MotorOutput& motor_output(Axis a) const { return motor_[idx(a)]; }
   const Inputs& inputs() const { return in_; }
   const storage::ParameterStore& store() const { return store_; }
+  // The last good temperature (kNoTemperatureMc before the first), the integrated platform
+  // rotation since power-up in [0, 359999] m°, and the sensors' state (docs/sensors.md).
+  std::int32_t temperature_mc() const { return temperature_mc_; }
+  std::int32_t rotation_mdeg() const { return rotation_.mdeg(); }
+  const SensorStatus& sensors() const { return sensors_; }
   std::int32_t fault_code() const { return fault_; }
   BoardCounters counters() const;
   std::uint32_t ticks() const { return ticks_; }
@@ -194,6 +239,11 @@ class Board {
   void handle(const frame::RawCommandFramer::Event& e);
   void step_axes();
   void check_drivers();
+  void configure_temperature();
+  void configure_gyro();
+  void read_sensors();
+  void read_temperature();
+  void read_gyro();
   void send_echoes();
 
   bool motion_permitted();
@@ -241,6 +291,12 @@ class Board {
   Hardware hw_;
   storage::ParameterStore store_;
   std::array<tmc2130::Driver, kAxes> drivers_;
+  tmp117::Driver tmp117_;
+  icm20789::Driver gyro_;
+  icm20789::Rotation rotation_{};
+  std::int16_t gyro_held_ = 0;  // the last good sample, integrated for a failed read
+  std::int32_t temperature_mc_ = kNoTemperatureMc;
+  SensorStatus sensors_{};
   frame::CallbackTable table_{};
   // The link layer only (syntax, CRC): command IDs and data are checked by table_ (Klipper
   // style), so an ID outside the table reaches table_'s own bound check.

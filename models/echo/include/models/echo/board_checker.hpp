@@ -6,7 +6,7 @@
 // and, later, the board fuzz target. Per tick:
 //   checker.rx(bytes);                     // whatever was handed to board.uart_rx()
 //   board.tick();
-//   for (auto& m : checker.after_tick(echo_bytes_sent_in_that_tick)) report(m);
+//   for (auto& m : checker.after_tick(echo_bytes_sent_in_that_tick, sensors_of(...))) report(m);
 #pragma once
 
 #include <array>
@@ -21,6 +21,8 @@
 #include "core/storage/parameters.hpp"
 #include "models/fram/mb85rs256b.hpp"
 #include "models/echo/echo_model.hpp"
+#include "models/icm20789/device.hpp"
+#include "models/tmp117/device.hpp"
 
 namespace ap::model::echo {
 
@@ -55,16 +57,24 @@ Boot boot_facts(const board::Board& b, const board::Inputs& at_boot, const stora
 
 // Env and Motion from the board's observers (the sampled inputs; the axis core's phase and
 // step counter and this tick's motor output; the path's active flag and queue length).
+// The sensors are not among them: sensors_of() below.
 Env env_of(const board::Inputs& in);
+
+// The I2C sensors as their device models hold them (registers read as oracles, not over the
+// bus), with how every transaction to each ends now (Ok, or the failure the bus or a missing
+// part gives; NoPort: the board has no sensor bus).
+Sensors sensors_of(const model::tmp117::Device& t, ap::i2c::Status t_answers, const model::icm20789::Device& g,
+                   ap::i2c::Status g_answers);
 Motion motion_of(const board::Board& b);
 
 class BoardChecker {
  public:
   BoardChecker(const board::Board& b, const Boot& boot) : board_(b), model_(boot) {}
   void rx(std::span<const std::uint8_t> bytes) { link_.rx(bytes); }
-  // After board.tick(): the echoes the board sent during that tick. Returns the
-  // disagreements (empty when the board agrees with the model), each one readable.
-  std::vector<std::string> after_tick(std::span<const EchoBytes> sent);
+  // After board.tick(): the echoes the board sent during that tick and the sensors as they
+  // stood during it (default: no sensor bus). Returns the disagreements (empty when the board
+  // agrees with the model), each one readable.
+  std::vector<std::string> after_tick(std::span<const EchoBytes> sent, const Sensors& sensors = {});
   EchoModel& model() { return model_; }
 
  private:

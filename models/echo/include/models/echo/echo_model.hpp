@@ -33,20 +33,36 @@
 #include "protocol/codec/layout.hpp"
 #include "protocol/codec/statuses.hpp"
 #include "core/frame/frames.hpp"
+#include "core/i2c/port.hpp"
 #include "core/storage/parameters.hpp"
 
 namespace ap::model::echo {
 
 inline constexpr std::size_t kAxes = 2;
 
-// Board-visible inputs of one tick (what Hardware::sample delivered).
+// The two I2C sensors as their device models stand during a tick (docs/sensors.md). The
+// model predicts from these what the board reads, when, and what it reports: never from the
+// board's own temperature or angle.
+struct SensorDevice {
+  // How every transaction to the part ends in this tick: Ok, AddressNack (absent), DataNack,
+  // BusError (the bus), or NoPort (the board has no sensor bus).
+  ap::i2c::Status answers = ap::i2c::Status::NoPort;
+  bool identity_ok = true;  // TMP117: Device_ID's DID = 0x117; ICM-20789: WHO_AM_I = 0x03
+};
+struct Sensors {
+  SensorDevice tmp117{};
+  std::uint16_t temp_result = 0x8000;  // the TMP117's Temp_Result register now
+  SensorDevice gyro{};
+  std::int16_t gyro_z = 0;             // the GYRO_ZOUT a read gives now (±250 °/s scale)
+};
+
+// Board-visible inputs of one tick (what Hardware::sample delivered, and the sensors).
 struct Env {
   bool usb = false;
   bool charger = false;
   std::uint16_t battery_mv = 4000;
   std::int32_t charge_ma = 0;
-  std::int32_t temperature_mc = 25000;
-  std::int32_t rotation_mdeg = 0;
+  Sensors sensors{};
   bool ble_status1 = false;  // (0, 1) = Data Session open (Tab. 7-2)
   bool ble_status2 = true;
   std::array<bool, kAxes> endstop_min{};
@@ -99,6 +115,8 @@ struct Boot {
   // defaults. A set that does not convert is replaced by the defaults and reported as fault
   // 4000 (docs/board.md "Power-up").
   std::optional<storage::ParameterSet> params;
+  // The sensors when the board configures them at the end of its boot.
+  Sensors sensors{};
 };
 
 struct ExpectedAxis {
@@ -159,6 +177,10 @@ class EchoModel {
   bool blocked() const { return block_ != codec::EchoStatus::Idle; }
   bool sleeping() const { return sleeping_; }
   std::uint32_t ticks() const { return ticks_; }
+  // The temperature and angle the model expects the board to report now (m°C before the
+  // wire clamp, m° in [0, 359999]).
+  std::int32_t temperature_mc() const { return temperature_mc_; }
+  std::int32_t rotation_mdeg() const;
 
  private:
   struct Params {
@@ -213,6 +235,19 @@ class EchoModel {
   std::int32_t limit_min(std::size_t a) const;    // inward (up)
   std::int32_t limit_max(std::size_t a) const;    // inward (down)
   Expected build(std::size_t event) const;
+
+  // docs/sensors.md "What the board does on an I2C error".
+  enum class SensorMode : std::uint8_t { Unwired, Ok, Lost, Foreign };
+  void configure_temperature(const Sensors& s);
+  void configure_gyro(const Sensors& s);
+  void sensors_tick();
+  SensorMode temp_mode_ = SensorMode::Unwired;
+  SensorMode gyro_mode_ = SensorMode::Unwired;
+  std::uint32_t temp_misses_ = 0;
+  std::uint32_t gyro_misses_ = 0;
+  std::int32_t temperature_mc_ = -256000;  // Temp_Result's reset value until the first reading
+  std::int64_t gyro_sum_ = 0;              // every integrated raw sample, unwrapped
+  std::int16_t gyro_held_ = 0;
 
   Params p_{};
   PathState path_{};

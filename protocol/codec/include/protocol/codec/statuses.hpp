@@ -59,7 +59,7 @@ inline constexpr Range kPositionRange{-99999, 999999};
     StatusInfo{EchoStatus::BlockedBattery, "blk_battery", "blocked: battery low", "position", "um", kPositionRange},
     StatusInfo{EchoStatus::LinkLost, "link_lost", "stopped: command watchdog expired", "position", "um", kPositionRange},
     StatusInfo{EchoStatus::Sleeping, "sleeping", "peripherals off", "position", "um", kPositionRange},
-    StatusInfo{EchoStatus::Fault, "fault", "driver or storage fault", "fault code", "-", {0, 999999}},
+    StatusInfo{EchoStatus::Fault, "fault", "driver, storage or sensor fault", "fault code", "-", {0, 999999}},
     StatusInfo{EchoStatus::FrameRejected, "rejected", "last frame rejected", "reason*100 + byte offset", "-", {0, 99999}},
     StatusInfo{EchoStatus::CommandRefused, "refused", "command valid but refused in this state", "command ID", "-", {0, 99}},
 };
