@@ -376,9 +376,8 @@ bool SimBoard::tmc_device(std::size_t a, const tmc::Datagram& tx, tmc::Datagram&
 }
 
 i2c::Status SimBoard::i2c_transfer(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
-  // The image has no sensor bus yet (firmware/m4 board port): its core gets NoPort, so the
-  // mirror does too, and both report the sensors as not fitted.
-  if (on_qemu()) return i2c::Status::NoPort;
+  // On QEMU the image's transactions drive the sensor models; the mirror's replay them.
+  if (on_qemu()) return replay_i2c(address, tx, rx);
   return i2c_device(address, tx, rx);
 }
 
@@ -411,8 +410,7 @@ void SimBoard::sensors_tick() {
 }
 
 model::echo::Sensors SimBoard::sensors_now() const {
-  const i2c::Status answers = on_qemu() ? i2c::Status::NoPort : i2c::Status::Ok;
-  return model::echo::sensors_of(tmp117_, answers, gyro_, answers);
+  return model::echo::sensors_of(tmp117_, i2c::Status::Ok, gyro_, i2c::Status::Ok);
 }
 
 bool SimBoard::tmc_spi(void* ctx, const tmc::Datagram& tx, tmc::Datagram& rx) {

@@ -185,9 +185,15 @@ void SimBoard::qemu_answer(const QemuImage::Message& m) {
       return;
     }
     case Kind::I2c: {
-      // No I2C device is wired to the simulated board yet: every address NACKs.
-      need(p.size() >= 2, "I2C");
-      std::vector<std::uint8_t> r(1U + p[1], 0);
+      need(p.size() >= 2 && p[0] <= 0x7F, "I2C");
+      const std::span<const std::uint8_t> wr(p.data() + 2, p.size() - 2);
+      std::vector<std::uint8_t> rd(p[1], 0);
+      const i2c::Status st = i2c_device(p[0], wr, rd);
+      qemu_log_.push_back({static_cast<std::uint8_t>(kI2cLogKey | p[0]), {wr.begin(), wr.end()}, rd, static_cast<std::uint8_t>(st)});
+      std::vector<std::uint8_t> r;
+      r.reserve(rd.size() + 1);
+      r.push_back(static_cast<std::uint8_t>(st));
+      r.insert(r.end(), rd.begin(), rd.end());
       qemu_->reply(r);
       return;
     }
@@ -262,6 +268,22 @@ bool SimBoard::replay(std::uint8_t dev, std::span<const std::uint8_t> mosi, std:
   const std::size_t n = std::min(t.miso.size(), miso.size());
   std::copy_n(t.miso.begin(), n, miso.begin());
   return true;
+}
+
+i2c::Status SimBoard::replay_i2c(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
+  const auto key = static_cast<std::uint8_t>(kI2cLogKey | address);
+  if (qemu_log_pos_ >= qemu_log_.size()) {
+    qemu_fail("the host core made an I2C transfer (address " + std::to_string(address) + ") the image did not");
+    return i2c::Status::BusError;
+  }
+  const Transfer& t = qemu_log_[qemu_log_pos_++];
+  if (t.dev != key || !std::equal(t.mosi.begin(), t.mosi.end(), tx.begin(), tx.end()) || t.miso.size() != rx.size()) {
+    qemu_fail("transfer " + std::to_string(qemu_log_pos_) + " of the tick: the image's (device " + std::to_string(t.dev) +
+              ", " + std::to_string(t.mosi.size()) + " bytes out) is not the host core's I2C transfer to " +
+              std::to_string(address));
+  }
+  std::copy_n(t.miso.begin(), std::min(t.miso.size(), rx.size()), rx.begin());
+  return static_cast<i2c::Status>(t.status);
 }
 
 void SimBoard::qemu_after_tick(bool boot) {

@@ -27,6 +27,10 @@ bool fram(void*, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) n
   return spi_transfer(SpiDevice::Fram, tx.data(), rx.data(), tx.size());
 }
 
+i2c::Status i2c_bus(void*, std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
+  return i2c_transfer(address, tx.data(), tx.size(), rx.data(), rx.size());
+}
+
 void sample(void*, board::Inputs& in) {
   std::uint8_t mosi[4] = {kExpanderRead, kExpanderGpioA, 0, 0};
   std::uint8_t miso[4] = {};
@@ -79,6 +83,7 @@ board::Hardware board_hardware() {
   board::Hardware hw;
   hw.tmc = {tmc2130::SpiPort{&tmc_x, nullptr}, tmc2130::SpiPort{&tmc_y, nullptr}};
   hw.fram = storage::SpiBus{&fram, nullptr};
+  hw.i2c = i2c::Port{&i2c_bus, nullptr};  // TMP117 and ICM-20789 (docs/sensors.md)
   hw.sample = &sample;
   hw.motor = &motor;
   hw.uart_tx = &uart_tx;

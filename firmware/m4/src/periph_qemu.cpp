@@ -143,8 +143,8 @@ bool spi_transfer(SpiDevice dev, const std::uint8_t* tx, std::uint8_t* rx, std::
   return true;
 }
 
-bool i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, std::uint8_t* rd, std::size_t nr) {
-  if (nw + 2 > cosim::kMaxPayload || nr + 1 > cosim::kMaxPayload) return false;
+i2c::Status i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, std::uint8_t* rd, std::size_t nr) {
+  if (nw + 2 > cosim::kMaxPayload || nr + 1 > cosim::kMaxPayload) return i2c::Status::BusError;
   std::uint8_t p[cosim::kMaxPayload];
   p[0] = addr7;
   p[1] = static_cast<std::uint8_t>(nr);
@@ -152,7 +152,8 @@ bool i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, st
   std::uint8_t r[cosim::kMaxPayload];
   request(cosim::Kind::I2c, p, nw + 2, r, nr + 1);
   for (std::size_t i = 0; i < nr; ++i) rd[i] = r[1 + i];
-  return r[0] != 0;
+  // The host's device models end the transaction as the bus would (protocol/cosim/wire.hpp).
+  return r[0] <= static_cast<std::uint8_t>(i2c::Status::BusError) ? static_cast<i2c::Status>(r[0]) : i2c::Status::BusError;
 }
 
 std::uint16_t adc_read(AdcChannel ch) {

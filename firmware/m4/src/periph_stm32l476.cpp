@@ -464,25 +464,29 @@ bool spi_transfer(SpiDevice dev, const std::uint8_t* tx, std::uint8_t* rx, std::
   return ok;
 }
 
-bool i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, std::uint8_t* rd, std::size_t nr) {
+i2c::Status i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, std::uint8_t* rd, std::size_t nr) {
   // NBYTES is 8 bits and this driver does not reload: one phase moves at most 255 bytes.
-  if (addr7 > 0x7F || nw > 255 || nr > 255) return false;
+  if (addr7 > 0x7F || nw > 255 || nr > 255) return i2c::Status::BusError;
   constexpr std::uint32_t kByteUs = 1000;  // a byte is 23 us; the rest is a slave's clock stretch
   const std::uint32_t sadd = std::uint32_t{addr7} << 1;
   if (!wait_for([] { return (reg(kI2c1 + kI2cIsr) & kI2cIsrBusy) == 0; }, kByteUs)) {
     i2c_reset();
-    return false;
+    return i2c::Status::BusError;
   }
   reg(kI2c1 + kI2cIcr) = kI2cIcrAll;
+  // Bytes of this phase the slave took: a NACK before the first is on the address.
+  std::size_t sent = 0;
   auto failed = [] { return (reg(kI2c1 + kI2cIsr) & (kI2cIsrNackf | kI2cIsrBerr | kI2cIsrArlo)) != 0; };
   // The end of a transfer that did not complete: a NACK makes the master send STOP itself
   // ("Master transmitter"); a bus error, lost arbitration or timeout resets the peripheral.
-  auto abort = [] {
+  auto abort = [&sent] {
     const bool nack = (reg(kI2c1 + kI2cIsr) & kI2cIsrNackf) != 0;
-    if (!nack || !wait_for([] { return (reg(kI2c1 + kI2cIsr) & kI2cIsrStopf) != 0; }, 1000)) i2c_reset();
+    bool stopped = nack && wait_for([] { return (reg(kI2c1 + kI2cIsr) & kI2cIsrStopf) != 0; }, 1000);
+    if (!stopped) i2c_reset();
     reg(kI2c1 + kI2cIcr) = kI2cIcrAll;
     reg(kI2c1 + kI2cIsr) = kI2cIsrTxe;  // flush a byte left in TXDR
-    return false;
+    if (!nack) return i2c::Status::BusError;
+    return sent == 0 ? i2c::Status::AddressNack : i2c::Status::DataNack;
   };
   // The write phase (an address-only probe when both lengths are 0); without a read it ends
   // with STOP (AUTOEND), with one it ends at TC and the read phase's START is a repeated start.
@@ -493,6 +497,7 @@ bool i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, st
         return abort();
       }
       reg(kI2c1 + kI2cTxdr) = wr[i];
+      ++sent;
     }
     const std::uint32_t done = nr == 0 ? kI2cIsrStopf : kI2cIsrTc;
     if (!wait_for([&] { return failed() || (reg(kI2c1 + kI2cIsr) & done) != 0; }, kByteUs) || failed()) {
@@ -500,6 +505,7 @@ bool i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, st
     }
   }
   if (nr > 0) {
+    sent = 0;  // a NACK now is on the address of the read
     reg(kI2c1 + kI2cCr2) =
         sadd | kI2cCr2RdWrn | static_cast<std::uint32_t>(nr) << 16 | kI2cCr2Start | kI2cCr2Autoend;
     for (std::size_t i = 0; i < nr; ++i) {
@@ -511,7 +517,7 @@ bool i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, st
     if (!wait_for([] { return (reg(kI2c1 + kI2cIsr) & kI2cIsrStopf) != 0; }, kByteUs)) return abort();
   }
   reg(kI2c1 + kI2cIcr) = kI2cIcrAll;
-  return true;
+  return i2c::Status::Ok;
 }
 
 std::uint16_t adc_read(AdcChannel ch) {

@@ -180,6 +180,7 @@ class SimBoard {
   struct Transfer {
     std::uint8_t dev = 0;
     std::vector<std::uint8_t> mosi, miso;
+    std::uint8_t status = 0;  // I2C: how the transaction ended (i2c::Status)
   };
   struct ImageMotor {
     bool dir = true;
@@ -197,6 +198,9 @@ class SimBoard {
   std::uint16_t expander_word(const board::Inputs& in) const;
   void qemu_fail(const std::string& what);
   bool replay(std::uint8_t dev, std::span<const std::uint8_t> mosi, std::span<std::uint8_t> miso);
+  i2c::Status replay_i2c(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx);
+  // I2C transfers share the log with SPI, keyed by this bit over the 7-bit address.
+  static constexpr std::uint8_t kI2cLogKey = 0x80;
   void write_qemu_stats() const;
   std::unique_ptr<QemuImage> qemu_;
   bool image_ready_ = false;   // the image waits for a grant (its Ready was read)

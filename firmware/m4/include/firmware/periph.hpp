@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/i2c/port.hpp"
 #include "protocol/cosim/wire.hpp"
 
 namespace ap::fw {
@@ -25,8 +26,9 @@ void periph_init();
 
 // One full-duplex transfer with the device's chip select held for all n bytes.
 bool spi_transfer(SpiDevice dev, const std::uint8_t* tx, std::uint8_t* rx, std::size_t n);
-// Write `nw` bytes, then (repeated start) read `nr`; false on a NACK.
-bool i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, std::uint8_t* rd, std::size_t nr);
+// Write `nw` bytes, then (repeated start) read `nr`: one transaction as core/i2c defines it,
+// its end as an i2c::Status (a NACK on the address, on a data byte, or a bus fault).
+i2c::Status i2c_transfer(std::uint8_t addr7, const std::uint8_t* wr, std::size_t nw, std::uint8_t* rd, std::size_t nr);
 // One conversion, 16-bit (the ADC's 12 bits oversampled x16, docs/qemu.md "Inputs").
 std::uint16_t adc_read(AdcChannel ch);
 void pin_write(Pin pin, bool level);

@@ -20,7 +20,8 @@ enum class Kind : std::uint8_t {
   // image -> host
   Hello = 'H',      // [version]: reset handler done, about to boot the board core
   Spi = 'S',        // [device][MOSI bytes]: full-duplex transfer, answered by Reply [MISO bytes]
-  I2c = 'I',        // [address][n_read][write bytes]: answered by Reply [ack][n_read bytes]
+  I2c = 'I',        // [address][n_read][write bytes]: answered by Reply [status][n_read bytes],
+                    // status an ap::i2c::Status (0 ok, 2 address NACK, 3 data NACK, 4 bus error)
   Adc = 'A',        // [channel]: one conversion, answered by Reply [code hi][code lo]
   PinRead = 'p',    // [pin]: answered by Reply [level]
   PinWrite = 'P',   // [pin][level]
