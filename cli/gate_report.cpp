@@ -3,6 +3,7 @@
 #include "cli.hpp"
 #include "gate.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -158,6 +159,18 @@ bool write_junit(const Run& run, const std::string& file) {
   return static_cast<bool>(out);
 }
 
+namespace {
+// What the release artifact holds for the MCU: the size table says whether images were linked.
+std::string image_note(const Details& d) {
+  if (d.m4_size_md.find("## Linked images") != std::string::npos) {
+    return "The release artifact holds the linked images (the STM32L476 board's and the QEMU machine's, with their map "
+           "files) beside the core's Cortex-M4 static libraries; docs/qemu.md.";
+  }
+  return "This profile has no MCU port yet (startup code, linker script, peripheral layer): the release artifact holds "
+         "its core as Cortex-M4 static libraries, not a firmware image.";
+}
+}  // namespace
+
 void write_reports(const Run& run, const std::string& dir) {
   fs::create_directories(dir);
   const auto& d = run.details;
@@ -193,8 +206,7 @@ void write_reports(const Run& run, const std::string& dir) {
     if (body.rfind("# ", 0) == 0) body = body.substr(body.find('\n') + 1);  // drop its own title
     md << body;
   }
-  md << "\nThe MCU port (startup code, linker script, peripheral drivers) is a later issue: the release\n"
-        "artifact holds the core as Cortex-M4 static libraries, not a firmware image.\n";
+  md << "\n" << image_note(d) << "\n";
   md << "\n## Scenario plots\n\n";
   if (d.plots.empty()) md << "No SVG plots under out/sim/ (run `axisproof sim`).\n";
   for (const auto& p : d.plots) md << "- [" << p << "](" << p << ")\n";
@@ -230,8 +242,7 @@ void write_reports(const Run& run, const std::string& dir) {
   if (!d.mutants.empty()) html_table(html, mut_head, d.mutants);
   html << "<h2>Cortex-M4 build</h2>\n";
   html << "<pre>" << xml_escape(d.m4_size_md.empty() ? "No size table (the cortex-m4 stage did not run)." : d.m4_size_md)
-       << "</pre>\n<p>The MCU port (startup code, linker script, peripheral drivers) is a later issue: the release "
-          "artifact holds the core as Cortex-M4 static libraries, not a firmware image.</p>\n";
+       << "</pre>\n<p>" << xml_escape(image_note(d)) << "</p>\n";
   html << "<h2>Scenario plots</h2>\n";
   if (d.plots.empty()) html << "<p>No SVG plots under out/sim/ (run <code>axisproof sim</code>).</p>\n";
   for (const auto& p : d.plots) {
@@ -258,6 +269,14 @@ void write_manifest(const Run& run, const std::string& release) {
   if (fs::is_directory(release + "/" + tag, ec)) {
     for (const auto& e : fs::directory_iterator(release + "/" + tag, ec)) libs.push_back(tag + "/" + e.path().filename().string());
   }
+  std::sort(libs.begin(), libs.end());
+  // The linked images and their maps (docs/qemu.md), where the profile has an MCU port.
+  std::string images;
+  for (const auto& l : libs) {
+    if (l.size() > 4 && (l.ends_with(".elf") || l.ends_with(".map"))) images += (images.empty() ? "" : ", ") + l;
+  }
+  const std::string port = images.empty() ? "not included: this profile has no startup code, linker script or peripheral layer yet"
+                                          : "images " + images + " (docs/qemu.md)";
   std::ofstream j(release + "/manifest.json");
   j << "{\n  \"name\": \"axisproof\",\n  \"version\": \"" << json_escape(run.version) << "\",\n  \"git\": \""
     << json_escape(run.git_hash) << "\",\n  \"profile\": \"" << json_escape(run.profile) << "\",\n  \"date\": \"" << json_escape(run.date) << "\",\n  \"verdict\": \""
@@ -266,7 +285,7 @@ void write_manifest(const Run& run, const std::string& release) {
     << "\"\n  },\n  \"m4_flags\": \"-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16 -Os -Werror -fno-exceptions -fno-rtti\",\n"
     << "  \"m4_libraries\": [";
   for (size_t i = 0; i < libs.size(); ++i) j << (i ? ", " : "") << "\"" << json_escape(libs[i]) << "\"";
-  j << "],\n  \"mcu_port\": \"not included: startup code, linker script and peripheral drivers are a later issue\",\n"
+  j << "],\n  \"mcu_port\": \"" << json_escape(port) << "\",\n"
     << "  \"stages\": [\n";
   for (size_t i = 0; i < run.rows.size(); ++i) {
     const auto& r = run.rows[i];
@@ -283,7 +302,7 @@ void write_manifest(const Run& run, const std::string& release) {
     << "\n- arm-none-eabi: " << arm << "\n- Cortex-M4 libraries (" << tag << "/): ";
   for (size_t i = 0; i < libs.size(); ++i) m << (i ? ", " : "") << libs[i];
   m << (libs.empty() ? "none" : "") << "\n- size table: " << tag << "-size.md\n"
-    << "- MCU port: not included (startup code, linker script, peripheral drivers are a later issue)\n\n";
+    << "- MCU port: " << port << "\n\n";
   std::vector<std::vector<std::string>> rows;
   for (const auto& r : run.rows) rows.push_back({r.stage, to_string(r.outcome.result), fmt_seconds(r.seconds), r.outcome.key});
   md_table(m, {"stage", "result", "time", "key figure"}, rows);

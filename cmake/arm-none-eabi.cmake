@@ -1,6 +1,6 @@
 # Cross toolchain for the Cortex-M4 build (m4 preset): Debian's gcc-arm-none-eabi 12.2 with
-# newlib. Static libraries only: the MCU port (startup code, linker script, drivers) is a
-# later issue, so nothing here links an executable.
+# newlib. The core libraries, and for the XY profile the linked images of firmware/m4 (their own
+# startup code and linker scripts, -nostartfiles; docs/qemu.md).
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)
 set(CMAKE_C_COMPILER arm-none-eabi-gcc)
