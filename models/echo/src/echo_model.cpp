@@ -77,6 +77,10 @@ bool power_of_two(std::int32_t v) { return v > 0 && (v & (v - 1)) == 0; }
 constexpr std::int64_t kPathMaxDelta = std::int64_t{1} << 24;
 constexpr std::int64_t kPathMaxOffset = std::int64_t{1} << 20;
 constexpr std::uint32_t kPathQueue = 16;
+// docs/cnc.md "Refusals": one segment of more than 2^20 moves (the S-curve's range) is TooLong;
+// a line makes max |delta| moves (one driving step per move, "Speeds"), an arc is judged by the
+// bound docs/cnc.md states, not by counting it. A longer *chain* is split, never refused.
+constexpr std::int64_t kPathMaxMoves = std::int64_t{1} << 20;
 // docs/cnc.md "Speeds": the jerk is the thesis's J = 20 mm/s^3 (seed-003.md §5.3.1), converted
 // with the mechanics; v_max, a_max and J must lie in scurve::Limits' ranges (BadLimits):
 // v 1 .. 100 000 moves/s, a >= 1, J 1 .. 1e9, J <= 1000 a, J <= 1e6 v.
@@ -665,6 +669,7 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
   }
   if (line) {
     if (e == start) return "zero length";
+    if (std::max(std::llabs(e[0] - start[0]), std::llabs(e[1] - start[1])) > kPathMaxMoves) return "too long";
   } else {
     std::array<std::int64_t, kAxes> c{};
     for (std::size_t a = 0; a < kAxes; ++a) {
@@ -679,6 +684,8 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
     // max(2 steps, 0.1 % of r): for integers |rs - re| > r/1000 exactly when > floor(r/1000).
     const std::int64_t tol = rs / 1000 > 2 ? rs / 1000 : 2;
     if (std::llabs(rs - re) > tol) return "radius mismatch";
+    // docs/cnc.md "Refusals": an arc's moves are bounded by (r + 2) * 5794 / 1024 + 2 |rs - re| + 32.
+    if ((rs + 2) * 5794 / 1024 + 2 * std::llabs(rs - re) + 32 > kPathMaxMoves) return "too long";
     // Swept extremes along each axis direction the arc passes (in double): c +- k with k the
     // largest integer with k - 1/2 < r, r the exact start radius in steps (cnc.md "Refusals":
     // every raster point is within 1/2 step of the circle).
