@@ -104,29 +104,35 @@ std::string QemuImage::log_tail() const {
   return t.empty() ? std::string("QEMU printed nothing") : "QEMU said: " + t;
 }
 
-void QemuImage::read_exact(int fd, std::uint8_t* buf, std::size_t n, const char* what) {
-  std::size_t done = 0;
-  while (done < n) {
+void QemuImage::wait_readable(int fd, const char* what) {
+  for (;;) {
     pollfd p{fd, POLLIN, 0};
     const int r = ::poll(&p, 1, static_cast<int>(opt_.timeout.count()));
-    if (r == 0) {
-      int status = 0;
-      const bool gone = ::waitpid(pid_, &status, WNOHANG) == pid_;
-      if (gone) pid_ = -1;
-      throw std::runtime_error(std::string("the image went silent (") + what + ", " +
-                               std::to_string(opt_.timeout.count()) + " ms)" + (gone ? "; QEMU exited. " + log_tail() : ""));
-    }
+    if (r > 0) return;
     if (r < 0) {
       if (errno == EINTR) continue;
       throw sys_error(what);
     }
-    const ssize_t got = ::read(fd, buf + done, n - done);
-    if (got <= 0) {
-      if (got < 0 && errno == EINTR) continue;
-      throw std::runtime_error(std::string(what) + ": closed; " + log_tail());
-    }
-    done += static_cast<std::size_t>(got);
+    int status = 0;
+    const bool gone = ::waitpid(pid_, &status, WNOHANG) == pid_;
+    if (gone) pid_ = -1;
+    throw std::runtime_error(std::string("the image went silent (") + what + ", " + std::to_string(opt_.timeout.count()) +
+                             " ms)" + (gone ? "; QEMU exited. " + log_tail() : std::string()));
   }
+}
+
+std::size_t QemuImage::read_some(int fd, std::uint8_t* buf, std::size_t n, const char* what) {
+  for (;;) {
+    wait_readable(fd, what);
+    const ssize_t got = ::read(fd, buf, n);
+    if (got > 0) return static_cast<std::size_t>(got);
+    if (got < 0 && errno == EINTR) continue;
+    throw std::runtime_error(std::string(what) + ": closed; " + log_tail());
+  }
+}
+
+void QemuImage::read_exact(int fd, std::uint8_t* buf, std::size_t n, const char* what) {
+  for (std::size_t done = 0; done < n;) done += read_some(fd, buf + done, n - done, what);
 }
 
 QemuImage::Message QemuImage::next() {
@@ -134,24 +140,12 @@ QemuImage::Message QemuImage::next() {
     if (in_pos_ == in_.size()) {
       in_.resize(4096);
       in_pos_ = 0;
-      pollfd p{to_host_, POLLIN, 0};
-      for (;;) {
-        const int r = ::poll(&p, 1, static_cast<int>(opt_.timeout.count()));
-        if (r > 0) break;
-        if (r < 0 && errno == EINTR) continue;
-        int status = 0;
-        const bool gone = ::waitpid(pid_, &status, WNOHANG) == pid_;
-        if (gone) pid_ = -1;
+      try {
+        in_.resize(read_some(to_host_, in_.data(), in_.size(), "the co-simulation channel"));
+      } catch (...) {
         in_.clear();
-        throw std::runtime_error("the image went silent (" + std::to_string(opt_.timeout.count()) + " ms)" +
-                                 (gone ? "; QEMU exited. " + log_tail() : std::string()));
+        throw;
       }
-      const ssize_t got = ::read(to_host_, in_.data(), in_.size());
-      if (got <= 0) {
-        in_.clear();
-        throw sys_error("read the co-simulation channel");
-      }
-      in_.resize(static_cast<std::size_t>(got));
     }
     return in_[in_pos_++];
   };

@@ -51,6 +51,10 @@ class QemuImage {
 
  private:
   void send(cosim::Kind kind, std::span<const std::uint8_t> payload);
+  // Waits for `fd` to have bytes; a silent image is an error after the timeout.
+  void wait_readable(int fd, const char* what);
+  // At least one and at most n bytes.
+  std::size_t read_some(int fd, std::uint8_t* buf, std::size_t n, const char* what);
   void read_exact(int fd, std::uint8_t* buf, std::size_t n, const char* what);
 
   QemuOptions opt_;
