@@ -3,14 +3,16 @@
 // A stage that could not run is NOT RUN, and NOT RUN fails the gate: a gate that skips
 // silently would pass firmware nobody checked. `--skip STAGE` only marks a stage NOT RUN.
 //
-// Builds are shared so the gate fits in 20 minutes on a 2-core machine: two full builds (dev
-// and asan) serve every stage. The asan preset carries, besides ASan + UBSan, clang
-// source-based coverage and the libFuzzer binaries (AP_COVERAGE, AP_FUZZ_BINARIES), so the
-// test stages write the coverage profiles and the fuzz smoke runs that build's fuzz_<t>; the
-// mutation runner reuses build/dev and build/asan through an overlay (ci/mutate).
+// Builds are shared so the gate fits in 20 minutes on a 2-core machine: one full build (asan)
+// serves every stage, and the dev build only gives the CLI the gate itself runs. The asan
+// preset carries, besides ASan + UBSan, clang source-based coverage and the libFuzzer binaries
+// (AP_COVERAGE, AP_FUZZ_BINARIES), so the test stages write the coverage profiles and the fuzz
+// smoke runs that build's fuzz_<t>; the mutation runner reuses build/asan through an overlay
+// (ci/mutate). docs/architecture.md, "The release gate".
 //
 // Stages (each one's output goes to out/gate/logs/<stage>.log):
-//   build-dev    dev preset (gcc-12, -Werror): everything, incrementally
+//   build-dev    dev preset (gcc-12, -Werror): the CLI (axisproof target: every library of the
+//                core, models, simulator and PC side it links), incrementally
 //   build-asan   asan preset (clang, ASan + UBSan, coverage, fuzz binaries); re-configured
 //                from the preset when an older build/asan lacks coverage or fuzz binaries
 // Every stage judges one firmware profile (--profile, default xy; docs/profiles.md): its tests
@@ -24,7 +26,7 @@
 //                seconds over a copy of its corpus (the tree is left untouched, new inputs and
 //                findings go to out/gate/fuzz/<t>/)
 //   e2e          ctest -L e2e on the asan build (NOT RUN when there are no e2e tests)
-//   mutation     ci/mutate --profile P: every mutant of the profile must be killed
+//   mutation     ci/mutate --profile P --builds asan: every mutant of the profile must be killed
 //   coverage     ci/coverage tests over the profiles the test stages wrote (the asan build);
 //                llvm-cov line + branch of the profile's coverage paths, FAIL below 90 % branch. Falls
 //                back to the cov preset (a build of its own) when build/asan has no coverage.
@@ -44,6 +46,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -55,6 +58,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -165,13 +169,15 @@ int build_jobs() {
   return n > 0 ? static_cast<int>(n) : 2;
 }
 
-Outcome build_stage(const std::string& preset, const std::string& log) {
+// `target`: one target (and what it links) instead of everything.
+Outcome build_stage(const std::string& preset, const std::string& log, const std::string& target = "") {
   std::string cmd;
   // A build tree configured before the preset gained its switches is configured again.
   if (!fs::exists(build_dir(preset) + "/CMakeCache.txt") || (preset == "asan" && !asan_shared())) {
     cmd = "cmake --preset " + preset + " && ";
   }
-  cmd += "cmake --build --preset " + preset + " --parallel " + std::to_string(build_jobs());
+  cmd += "cmake --build --preset " + preset + " --parallel " + std::to_string(build_jobs()) +
+         (target.empty() ? "" : " --target " + target);
   const int st = run_logged(cmd, log, R"(FAILED:|error:)");
   built_ok[preset] = st == 0;
   // Ninja's last progress line "[n/N]" tells how much was rebuilt.
@@ -184,13 +190,14 @@ Outcome build_stage(const std::string& preset, const std::string& log) {
     from = m.suffix().first;
   }
   if (st != 0) return {Result::Fail, "build failed (build/" + preset + ")"};
-  return {Result::Pass, "build/" + preset + ", " + steps};
+  return {Result::Pass, "build/" + preset + (target.empty() ? "" : " " + target) + ", " + steps};
 }
 
-int count_tests(const std::string& preset, const std::string& labels) {
+int count_tests(const std::string& preset, const std::string& labels, const std::string& exclude = "") {
   int st = 0;
   const std::string out = run_capture("cd " + quote(source_dir()) + " && ctest --preset " + preset + " -N -L " + quote(labels) +
-                                          " -L " + quote(profile_labels()) + " 2>/dev/null", &st);
+                                          " -L " + quote(profile_labels()) + (exclude.empty() ? "" : " -E " + quote(exclude)) +
+                                          " 2>/dev/null", &st);
   std::smatch m;
   if (std::regex_search(out, m, std::regex(R"(Total Tests: (\d+))"))) return std::stoi(m[1].str());
   return 0;
@@ -198,11 +205,14 @@ int count_tests(const std::string& preset, const std::string& labels) {
 
 std::string profile_dir() { return build_dir("asan") + "/profiles"; }
 
-Outcome ctest_stage(const std::string& labels, const std::string& junit, const std::string& log) {
+// `exclude` (a ctest -E regex, or empty): tests another stage runs in the same form.
+Outcome ctest_stage(const std::string& labels, const std::string& junit, const std::string& log,
+                    const std::string& exclude = "") {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
   const int n = count_tests("asan", labels);
   if (n == 0) return {Result::NotRun, "no tests labelled " + labels};
-  const int st = run_logged("ctest --preset asan -L " + quote(labels) + " -L " + quote(profile_labels()) +
+  const std::string except = exclude.empty() ? "" : " -E " + quote(exclude);
+  const int st = run_logged("ctest --preset asan -L " + quote(labels) + " -L " + quote(profile_labels()) + except +
                                 " --no-tests=error --output-junit " + quote(junit),
                             log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
   const std::string text = slurp(log);
@@ -210,6 +220,10 @@ Outcome ctest_stage(const std::string& labels, const std::string& junit, const s
   std::string key = std::to_string(n) + " tests";
   if (std::regex_search(text, m, std::regex(R"((\d+)% tests passed, (\d+) tests? failed out of (\d+))"))) {
     key = m[3].str() + " tests, " + m[2].str() + " failed";
+  }
+  if (!exclude.empty()) {
+    const int ran = count_tests("asan", labels, exclude);
+    key += " (" + std::to_string(n - ran) + " that re-prove the obligations left to the proofs stage)";
   }
   return {st == 0 ? Result::Pass : Result::Fail, key};
 }
@@ -253,11 +267,28 @@ long long stat_of(const std::string& text, const std::string& name) {
   return -1;
 }
 
+// Runs `tasks` on up to build_jobs() threads at once and returns when all are done. Each task
+// writes its own files (the shared stage log is written afterwards, in order), so the stages
+// whose parts are independent single-threaded processes (the fuzz smoke's targets, the QEMU
+// scenarios) use both cores instead of one.
+void run_parallel(const std::vector<std::function<void()>>& tasks) {
+  std::atomic<std::size_t> next{0};
+  std::vector<std::thread> pool;
+  const std::size_t n = std::min(tasks.size(), static_cast<std::size_t>(build_jobs()));
+  for (std::size_t i = 0; i < n; ++i) {
+    pool.emplace_back([&] {
+      for (std::size_t k = next++; k < tasks.size(); k = next++) tasks[k]();
+    });
+  }
+  for (auto& t : pool) t.join();
+}
+
 // The short run of one target: the asan build's libFuzzer binary (ASan + UBSan) for `seconds`
 // over a scratch corpus seeded from fuzz/corpus/<t> (read-only), with its dictionary;
-// new inputs and reproducers stay under out/gate/fuzz/<t>/.
-void fuzz_short_run(const FuzzTarget& t, gate::Run& run, const std::string& log, int* findings, bool* ok,
-                    long long* min_rate, std::string* slowest) {
+// new inputs and reproducers stay under out/gate/fuzz/<t>/, its output in fuzz.log there.
+// Returns the exit status. Two targets run at once (run_parallel): the rates are those of a
+// shared machine, as every rate the gate reports.
+int fuzz_short_run(const FuzzTarget& t) {
   const std::string src = source_dir();
   const std::string dir = gate_dir() + "/fuzz/" + t.name;
   std::error_code ec;
@@ -274,12 +305,20 @@ void fuzz_short_run(const FuzzTarget& t, gate::Run& run, const std::string& log,
                     " -max_total_time=" + std::to_string(fuzz_seconds) + " -print_final_stats=1 -seed=1" +
                     " -artifact_prefix=" + quote(dir + "/findings/") + (dict.empty() ? "" : " -dict=" + quote(dict)) + " " +
                     quote(dir + "/corpus") + (fs::is_directory(corpus) ? " " + quote(corpus) : "");
-  const std::string tlog = dir + "/fuzz.log";
-  const int st = run_logged(cmd + " >" + quote(tlog) + " 2>&1", log);
-  const std::string text = slurp(tlog);
+  return run_logged(cmd + " >" + quote(dir + "/fuzz.log") + " 2>&1", dir + "/command.log");
+}
+
+// Reads one target's short run (fuzz_short_run) into the report and the stage log.
+void fuzz_collect(const FuzzTarget& t, int st, gate::Run& run, const std::string& log, int* findings, bool* ok,
+                  long long* min_rate, std::string* slowest) {
+  const std::string src = source_dir();
+  const std::string dir = gate_dir() + "/fuzz/" + t.name;
+  const std::string corpus = src + "/fuzz/corpus/" + t.name;
+  std::error_code ec;
+  const std::string text = slurp(dir + "/fuzz.log");
   {
     std::ofstream out(log, std::ios::app);
-    out << text;
+    out << slurp(dir + "/command.log") << text;
   }
   const long long execs = stat_of(text, "stat::number_of_executed_units");
   const long long rate = stat_of(text, "stat::average_exec_per_sec");
@@ -333,7 +372,13 @@ Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   int findings = 0;
   long long min_rate = -1;
   std::string slowest;
-  for (const auto& t : runnable) fuzz_short_run(t, run, log, &findings, &ok, &min_rate, &slowest);
+  std::vector<int> status(runnable.size(), 0);
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t i = 0; i < runnable.size(); ++i) tasks.push_back([&, i] { status[i] = fuzz_short_run(runnable[i]); });
+  run_parallel(tasks);
+  for (std::size_t i = 0; i < runnable.size(); ++i) {
+    fuzz_collect(runnable[i], status[i], run, log, &findings, &ok, &min_rate, &slowest);
+  }
   std::string key = std::to_string(replays) + " replay tests; " + std::to_string(runnable.size()) + " targets x " +
                     std::to_string(fuzz_seconds) + " s, " + std::to_string(findings) + " findings";
   if (min_rate >= 0) key += ", slowest " + slowest + " " + std::to_string(min_rate) + " exec/s";
@@ -357,12 +402,13 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
   if (listed != 0 || trim(own).empty()) return {Result::NotRun, "no mutants of this profile in ci/mutants/"};
   std::error_code ec;
   fs::remove(source_dir() + "/out/mutate/report.tsv", ec);
-  // The runner judges each mutant in build/dev and build/asan (overlay mode, ci/mutate), so
-  // both must have built. Its baseline of the Killed-by checks always runs (the earlier stages
-  // ran the asan tests, not the dev ones); the wider stages' baseline (ctest labels and
-  // `axisproof prove`) is what the earlier stages just showed on the same sources, so it is
-  // skipped when they all passed; otherwise the runner runs it, and leaves out any wider stage
-  // that fails on the unmutated tree.
+  // The runner judges each mutant in build/asan only (overlay mode, ci/mutate --builds asan):
+  // with lld the asan build relinks and checks a mutant as fast as the gcc one, and judging
+  // there spares the gate a second full build (docs/architecture.md). When the earlier test,
+  // proofs, fuzz and e2e stages all passed in that same build, they ran every test a Killed-by
+  // ctest check can select, and the wider stages (ctest labels and `axisproof prove`), so only
+  // the other Killed-by checks (`axisproof` commands) get a baseline run; otherwise the runner
+  // runs the whole baseline, and leaves out any wider stage that fails on the unmutated tree.
   if (!built_ok["dev"] || !built_ok["asan"]) return {Result::NotRun, "build (dev) or build (asan) failed"};
   bool earlier_pass = true;
   for (const auto& r : run.rows) {
@@ -373,8 +419,9 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
     }
   }
   // The profile's mutants and the harness's own (README, bootstrap, CLI), like the tests.
-  const int st = run_logged("ci/mutate --profile " + std::string(g_profile->name) + ",harness --jobs " + std::to_string(build_jobs()) +
-                                (earlier_pass ? " --no-wide-baseline" : ""),
+  const int st = run_logged("ci/mutate --builds asan --profile " + std::string(g_profile->name) + ",harness --jobs " +
+                                std::to_string(build_jobs()) +
+                                (earlier_pass ? " --no-wide-baseline --no-ctest-baseline" : ""),
                             log,
                             R"(^\[\d+/\d+\]|^mutate: )");
   std::ifstream tsv(source_dir() + "/out/mutate/report.tsv");
@@ -491,12 +538,32 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
   std::vector<std::string> bad;
   std::string shortest;
   unsigned long shortest_ticks = 0;
-  for (const std::string_view sv : g_profile->qemu_scenarios) {
-    const std::string name(sv);
-    const std::string scn = std::string(g_profile->scenarios) + "/" + name + ".scn";
-    const int host = run_logged(self + " sim run " + quote(scn) + " --out " + quote(root + "/host"), log);
-    const int image = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), log,
-                                 "^scenario ");
+  // Two scenarios at once (run_parallel): each run is one emulator and one mirror process
+  // taking turns, about one core. Each writes its own log, appended to the stage's in order.
+  const std::vector<std::string_view>& names = g_profile->qemu_scenarios;
+  std::vector<int> host_st(names.size(), 0), image_st(names.size(), 0);
+  std::vector<std::function<void()>> tasks;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    tasks.push_back([&, i] {
+      const std::string name(names[i]);
+      const std::string scn = std::string(g_profile->scenarios) + "/" + name + ".scn";
+      const std::string own = root + "/logs/" + name + ".log";
+      std::error_code rm_ec;
+      fs::remove(own, rm_ec);
+      host_st[i] = run_logged(self + " sim run " + quote(scn) + " --out " + quote(root + "/host"), own);
+      image_st[i] = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), own,
+                               "^scenario ");
+    });
+  }
+  run_parallel(tasks);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string name(names[i]);
+    const int host = host_st[i];
+    const int image = image_st[i];
+    {
+      std::ofstream out(log, std::ios::app);
+      out << slurp(root + "/logs/" + name + ".log");
+    }
     const auto kv = stats(root + "/qemu/" + name + "/qemu.txt");
     const bool same = slurp(root + "/host/" + name + "/trace.csv") == slurp(root + "/qemu/" + name + "/trace.csv") &&
                       !slurp(root + "/qemu/" + name + "/trace.csv").empty();
@@ -527,7 +594,8 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
   const std::size_t n = g_profile->qemu_scenarios.size();
   char buf[320];
   std::snprintf(buf, sizeof buf,
-                "%d/%zu scenarios PASS on the image, traces equal to the host's%s; emulated %.1f s in %.1f s wall (%.2fx); "
+                "%d/%zu scenarios PASS on the image, traces equal to the host's%s; emulated %.1f s in %.1f s wall (%.2fx, "
+                "two runs at once); "
                 "stack high-water %lu of %lu B",
                 passed, n, repeatable ? ", repeatable" : "", emulated, wall, wall > 0 ? emulated / wall : 0.0, stack, stack_size);
   std::string key = buf;
@@ -590,13 +658,19 @@ void add_gate(CLI::App& app) {
       run.git_hash += " (with uncommitted changes)";
 
     const std::vector<Stage> stages = {
-        {"build-dev", "build (dev)", [](gate::Run&, std::string& l) { return build_stage("dev", l); }},
+        // The dev build gives the CLI (the bootstrap built it; a no-op unless the sources
+        // changed since). Its tests are not built: every test runs in the asan build, and
+        // the mutants are judged there too (docs/architecture.md, "The release gate").
+        {"build-dev", "build (dev)", [](gate::Run&, std::string& l) { return build_stage("dev", l, "axisproof"); }},
         {"build-asan", "build (asan)", [](gate::Run&, std::string& l) { return build_stage("asan", l); }},
         {"tests", "unit/property/proof tests",
          [](gate::Run&, std::string& l) {
            std::error_code rm_ec;
            fs::remove_all(profile_dir(), rm_ec);  // the coverage stage reads what this and the later test stages write
-           return ctest_stage("unit|property|proof", gate_dir() + "/junit-tests.xml", l);
+           // The tests that prove the profile's whole obligation registry again (each module's
+           // "every obligation is PROVED") are left to the proofs stage, which proves the same
+           // list with the same solver and reports each obligation.
+           return ctest_stage("unit|property|proof", gate_dir() + "/junit-tests.xml", l, std::string(g_profile->registry_tests));
          }},
         {"proofs", "proofs", [](gate::Run& r, std::string& l) { return proofs_stage(r, l); }},
         {"fuzz", "fuzz smoke", [](gate::Run& r, std::string& l) { return fuzz_stage(r, l); }},

@@ -57,8 +57,10 @@ struct Profile {
   int (*sim_run)(const SimRunArgs&);
   int (*sim_board)(const SimBoardArgs&);
 
-  // Proofs: its obligations.
+  // Proofs: its obligations, and the tests (a ctest -E regex) that prove exactly those
+  // obligations once more, module by module; the gate's proofs stage stands for them.
   std::vector<model::smt::Obligation> (*obligations)();
+  std::string_view registry_tests;
 
   // Gate: the folders (or files) whose line and branch coverage the gate requires, the
   // command that cross-builds its core and checks its size against its MCU, and the name its

@@ -59,6 +59,7 @@ Profile hc08_profile() {
       .sim_run = &sim_run,
       .sim_board = &sim_board,
       .obligations = &model::smt::hc08_obligations,
+      .registry_tests = "^Hc08Proofs\\.EveryObligationIsProved$",
       .coverage_paths = {"core/hc08_drive", "core/hc08_timer", "core/hc08_motor", "core/hc08_menu", "core/hc08_board"},
       // Cross-built for the Cortex-M4 and held to the HC08's budget (docs/hc08.md "MCU").
       .size_check = "ci/m4-build --profile hc08",

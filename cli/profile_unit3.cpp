@@ -147,6 +147,7 @@ Profile unit3_profile() {
       .sim_run = &sim_run,
       .sim_board = &sim_board,
       .obligations = &model::smt::unit3_obligations,
+      .registry_tests = "^Unit3Proofs\\.EveryObligationIsProved$",
       .coverage_paths = {"protocol/unit3_wire", "core/unit3_joystick", "core/unit3_axis", "core/unit3_settings",
                          "core/unit3_ramp", "core/unit3_menu", "core/unit3_board"},
       // Cross-built for the Cortex-M4 and held to the ATmega2560's budget (docs/unit3.md "MCU").

@@ -209,6 +209,7 @@ Profile xy_profile() {
       .sim_run = &sim_run,
       .sim_board = &sim_board,
       .obligations = &model::smt::all_obligations,
+      .registry_tests = "^(tmc2130_proof\\.every_field_obligation_is_proved|smt_proof\\.(axis|timer|storage)_obligations_proved|(Interp|Scurve)Proof\\.EveryObligationIsProved)$",
       // The firmware core and its wire codec, and the PC side and scenario parser the
       // end-to-end runs rely on (the set measured before they moved to pc/ and sim/); the
       // other profiles' folders under core/ and protocol/ are theirs. The CNC layer of seed 003
