@@ -267,21 +267,25 @@ long long stat_of(const std::string& text, const std::string& name) {
   return -1;
 }
 
-// Runs `tasks` on up to build_jobs() threads at once and returns when all are done. Each task
-// writes its own files (the shared stage log is written afterwards, in order), so the stages
-// whose parts are independent single-threaded processes (the fuzz smoke's targets, the QEMU
-// scenarios) use both cores instead of one.
-void run_parallel(const std::vector<std::function<void()>>& tasks) {
+// Runs job(0) .. job(count - 1) on up to build_jobs() threads at once and returns when all are
+// done. Each job writes its own files (the shared stage log is written afterwards, in order),
+// so the stages whose parts are independent single-threaded processes (the fuzz smoke's
+// targets, the QEMU scenarios) use both cores instead of one.
+void run_parallel(std::size_t count, const std::function<void(std::size_t)>& job) {
   std::atomic<std::size_t> next{0};
   std::vector<std::thread> pool;
-  const std::size_t n = std::min(tasks.size(), static_cast<std::size_t>(build_jobs()));
+  const std::size_t n = std::min(count, static_cast<std::size_t>(build_jobs()));
   for (std::size_t i = 0; i < n; ++i) {
     pool.emplace_back([&] {
-      for (std::size_t k = next++; k < tasks.size(); k = next++) tasks[k]();
+      for (std::size_t k = next++; k < count; k = next++) job(k);
     });
   }
   for (auto& t : pool) t.join();
 }
+
+// Where one target's short run keeps its corpus copy, findings and logs, and its bundled corpus.
+std::string fuzz_out_dir(const FuzzTarget& t) { return gate_dir() + "/fuzz/" + t.name; }
+std::string fuzz_corpus_dir(const FuzzTarget& t) { return source_dir() + "/fuzz/corpus/" + t.name; }
 
 // The short run of one target: the asan build's libFuzzer binary (ASan + UBSan) for `seconds`
 // over a scratch corpus seeded from fuzz/corpus/<t> (read-only), with its dictionary;
@@ -290,7 +294,7 @@ void run_parallel(const std::vector<std::function<void()>>& tasks) {
 // shared machine, as every rate the gate reports.
 int fuzz_short_run(const FuzzTarget& t) {
   const std::string src = source_dir();
-  const std::string dir = gate_dir() + "/fuzz/" + t.name;
+  const std::string dir = fuzz_out_dir(t);
   std::error_code ec;
   fs::remove_all(dir, ec);
   fs::create_directories(dir + "/corpus");
@@ -299,7 +303,7 @@ int fuzz_short_run(const FuzzTarget& t) {
   for (const auto& d : {src + "/fuzz/dict/" + t.name + ".dict", src + "/fuzz/dict/" + t.group + ".dict"}) {
     if (dict.empty() && fs::exists(d)) dict = d;
   }
-  const std::string corpus = src + "/fuzz/corpus/" + t.name;
+  const std::string corpus = fuzz_corpus_dir(t);
   std::string cmd = "LLVM_PROFILE_FILE=/dev/null ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 "
                     "UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 " + quote(t.binary) +
                     " -max_total_time=" + std::to_string(fuzz_seconds) + " -print_final_stats=1 -seed=1" +
@@ -311,9 +315,8 @@ int fuzz_short_run(const FuzzTarget& t) {
 // Reads one target's short run (fuzz_short_run) into the report and the stage log.
 void fuzz_collect(const FuzzTarget& t, int st, gate::Run& run, const std::string& log, int* findings, bool* ok,
                   long long* min_rate, std::string* slowest) {
-  const std::string src = source_dir();
-  const std::string dir = gate_dir() + "/fuzz/" + t.name;
-  const std::string corpus = src + "/fuzz/corpus/" + t.name;
+  const std::string dir = fuzz_out_dir(t);
+  const std::string corpus = fuzz_corpus_dir(t);
   std::error_code ec;
   const std::string text = slurp(dir + "/fuzz.log");
   {
@@ -373,9 +376,7 @@ Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   long long min_rate = -1;
   std::string slowest;
   std::vector<int> status(runnable.size(), 0);
-  std::vector<std::function<void()>> tasks;
-  for (std::size_t i = 0; i < runnable.size(); ++i) tasks.push_back([&, i] { status[i] = fuzz_short_run(runnable[i]); });
-  run_parallel(tasks);
+  run_parallel(runnable.size(), [&](std::size_t i) { status[i] = fuzz_short_run(runnable[i]); });
   for (std::size_t i = 0; i < runnable.size(); ++i) {
     fuzz_collect(runnable[i], status[i], run, log, &findings, &ok, &min_rate, &slowest);
   }
@@ -542,20 +543,16 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
   // taking turns, about one core. Each writes its own log, appended to the stage's in order.
   const std::vector<std::string_view>& names = g_profile->qemu_scenarios;
   std::vector<int> host_st(names.size(), 0), image_st(names.size(), 0);
-  std::vector<std::function<void()>> tasks;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    tasks.push_back([&, i] {
-      const std::string name(names[i]);
-      const std::string scn = std::string(g_profile->scenarios) + "/" + name + ".scn";
-      const std::string own = root + "/logs/" + name + ".log";
-      std::error_code rm_ec;
-      fs::remove(own, rm_ec);
-      host_st[i] = run_logged(self + " sim run " + quote(scn) + " --out " + quote(root + "/host"), own);
-      image_st[i] = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), own,
-                               "^scenario ");
-    });
-  }
-  run_parallel(tasks);
+  run_parallel(names.size(), [&](std::size_t i) {
+    const std::string name(names[i]);
+    const std::string scn = std::string(g_profile->scenarios) + "/" + name + ".scn";
+    const std::string own = root + "/logs/" + name + ".log";
+    std::error_code rm_ec;
+    fs::remove(own, rm_ec);
+    host_st[i] = run_logged(self + " sim run " + quote(scn) + " --out " + quote(root + "/host"), own);
+    image_st[i] = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), own,
+                             "^scenario ");
+  });
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string name(names[i]);
     const int host = host_st[i];
