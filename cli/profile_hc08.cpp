@@ -12,6 +12,8 @@
 
 namespace ap::cli {
 
+// Named so that the three profiles' helpers stay apart in the unity build (cli/CMakeLists.txt).
+namespace profile_hc08 {
 namespace {
 
 // axisproof sim board --profile hc08: boards for `sim run --profile hc08 --join --domain N`
@@ -44,6 +46,7 @@ int sim_run(const SimRunArgs& a) {
 }
 
 }  // namespace
+}  // namespace profile_hc08
 
 Profile hc08_profile() {
   return Profile{
@@ -56,8 +59,8 @@ Profile hc08_profile() {
       .encode = nullptr,
       .doc = nullptr,
       .scenarios = "scenarios/hc08",
-      .sim_run = &sim_run,
-      .sim_board = &sim_board,
+      .sim_run = &profile_hc08::sim_run,
+      .sim_board = &profile_hc08::sim_board,
       .obligations = &model::smt::hc08_obligations,
       .registry_tests = "^Hc08Proofs\\.EveryObligationIsProved$",
       .coverage_paths = {"core/hc08_drive", "core/hc08_timer", "core/hc08_motor", "core/hc08_menu", "core/hc08_board"},

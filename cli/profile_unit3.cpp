@@ -19,6 +19,8 @@
 
 namespace ap::cli {
 
+// Named so that the three profiles' helpers stay apart in the unity build (cli/CMakeLists.txt).
+namespace profile_unit3 {
 namespace {
 
 namespace w = ap::unit3_wire;
@@ -132,6 +134,7 @@ int sim_run(const SimRunArgs& a) {
 }
 
 }  // namespace
+}  // namespace profile_unit3
 
 Profile unit3_profile() {
   return Profile{
@@ -139,13 +142,13 @@ Profile unit3_profile() {
       .title = "3-axis USB control unit",
       .seed = "seed-001 (docs/unit3.md)",
       .mcu = "ATmega2560 (256 KB flash, 8 KB RAM)",
-      .decode_frames = &decode_frames,
-      .decode_stream = &decode_stream,
+      .decode_frames = &profile_unit3::decode_frames,
+      .decode_stream = &profile_unit3::decode_stream,
       .encode = nullptr,
       .doc = nullptr,
       .scenarios = "scenarios/unit3",
-      .sim_run = &sim_run,
-      .sim_board = &sim_board,
+      .sim_run = &profile_unit3::sim_run,
+      .sim_board = &profile_unit3::sim_board,
       .obligations = &model::smt::unit3_obligations,
       .registry_tests = "^Unit3Proofs\\.EveryObligationIsProved$",
       .coverage_paths = {"protocol/unit3_wire", "core/unit3_joystick", "core/unit3_axis", "core/unit3_settings",

@@ -25,6 +25,8 @@
 
 namespace ap::cli {
 
+// Named so that the three profiles' helpers stay apart in the unity build (cli/CMakeLists.txt).
+namespace profile_xy {
 namespace {
 
 // ------------------------------------------------------------------------------ frame codec
@@ -194,6 +196,7 @@ int sim_run(const SimRunArgs& a) {
 }
 
 }  // namespace
+}  // namespace profile_xy
 
 Profile xy_profile() {
   return Profile{
@@ -201,13 +204,13 @@ Profile xy_profile() {
       .title = "wireless XY positioning platform",
       .seed = "seed-000 (docs/architecture.md)",
       .mcu = "STM32L476, Cortex-M4F (1 MB flash, 128 KB RAM)",
-      .decode_frames = &decode_frames,
-      .decode_stream = &decode_stream,
-      .encode = &encode,
-      .doc = &doc,
+      .decode_frames = &profile_xy::decode_frames,
+      .decode_stream = &profile_xy::decode_stream,
+      .encode = &profile_xy::encode,
+      .doc = &profile_xy::doc,
       .scenarios = "scenarios",
-      .sim_run = &sim_run,
-      .sim_board = &sim_board,
+      .sim_run = &profile_xy::sim_run,
+      .sim_board = &profile_xy::sim_board,
       .obligations = &model::smt::all_obligations,
       .registry_tests = "^(tmc2130_proof\\.every_field_obligation_is_proved|smt_proof\\.(axis|timer|storage)_obligations_proved|(Interp|Scurve)Proof\\.EveryObligationIsProved)$",
       // The firmware core and its wire codec, and the PC side and scenario parser the
