@@ -18,15 +18,15 @@ void prove_all(void (*add)(ap::model::smt::ObligationList&)) {
   // A name prefix, like `axisproof prove --only`: for quick local runs and the proof mutants'
   // Killed-by checks (ci/mutants/README.md), so a prefix that names nothing fails.
   const char* only = std::getenv("AP_PROVE_ONLY");
-  std::size_t proved_or_not = 0;
+  std::size_t selected = 0;
   for (const auto& o : list) {
     if (only != nullptr && o.name.rfind(only, 0) != 0) continue;
-    ++proved_or_not;
+    ++selected;
     const auto r = ap::model::smt::run(o, kTimeoutMs);
     EXPECT_EQ(r.verdict, ap::model::smt::Verdict::Proved) << o.name << ": " << r.counterexample;
     std::printf("%-40s %-7s %.2f s\n", o.name.c_str(), ap::model::smt::verdict_name(r.verdict), r.seconds);
   }
-  EXPECT_GT(proved_or_not, 0u) << "AP_PROVE_ONLY=" << only << " names no obligation of this module";
+  EXPECT_GT(selected, 0u) << "AP_PROVE_ONLY=" << only << " names no obligation of this module";
 }
 
 TEST(smt_proof, axis_obligations_proved) { prove_all(&ap::model::smt::add_axis_obligations); }
