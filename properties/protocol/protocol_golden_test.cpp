@@ -68,7 +68,9 @@ f::EchoFrame expected_echo(const json& e) {
 
 TEST(ProtocolGolden, Crc16CcittFalseCheckValues) {
   constexpr std::array<std::uint8_t, 9> kCheckInput{'1', '2', '3', '4', '5', '6', '7', '8', '9'};
-  static_assert(c::crc16(kCheckInput) == c::kCrcCheck);
+  // 0x29B1: CRC-16/CCITT-FALSE's published check value over "123456789" (docs/protocol.md),
+  // stated here rather than read from the codec's own constant.
+  static_assert(c::crc16(kCheckInput) == 0x29B1);
   ASSERT_FALSE(vectors()["crc16_ccitt_false"].empty());
   for (const auto& v : vectors()["crc16_ccitt_false"]) {
     const auto in = v["input"].get<std::string>();
