@@ -233,7 +233,10 @@ Outcome proofs_stage(gate::Run& run, const std::string& log) {
   if (slurp(source_dir() + "/cli/cmd_prove.cpp").find("not available yet") != std::string::npos) {
     return {Result::NotRun, "axisproof prove is still the placeholder (docs/proofs.md)"};
   }
-  const int st = run_logged(quote(self_exe()) + " prove --profile " + std::string(g_profile->name), log, R"(^\[\d+/\d+\])");
+  // Both cores: the obligations are dealt to build_jobs() processes (axisproof prove --jobs).
+  const int st = run_logged(quote(self_exe()) + " prove --profile " + std::string(g_profile->name) + " --jobs " +
+                                std::to_string(build_jobs()),
+                            log, R"(^\[\d+/\d+\])");
   const std::string text = slurp(log);
   if (text.find("not available yet") != std::string::npos) return {Result::NotRun, "axisproof prove not available yet"};
   // The final table: a header line starting with "obligation", rows until a blank line.

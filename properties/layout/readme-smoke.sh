@@ -63,7 +63,10 @@ case $key in
   axisproof-test)
     expect 0 '100% tests passed' ./axisproof test --preset "$preset" -R '^cli\.unknown_subcommand_exits_2$' ;;
   axisproof-prove)
-    expect 0 '1 obligations: 1 proved' ./axisproof prove --only axis.dd.monotone ;;
+    expect 0 '1 obligations: 1 proved' ./axisproof prove --only axis.dd.monotone
+    # Two processes (docs/proofs.md): the second one's outcomes must reach the table and the count.
+    expect 0 '^5 obligations: 5 proved, 0 failed, 0 unknown' ./axisproof prove --only axis.dd. --jobs 2
+    [[ $(grep -c '^axis\.dd\..* PROVED ' <<<"$out") -eq 5 ]] || fail "prove --jobs 2: the table does not list the 5 obligations as PROVED" ;;
   axisproof-fuzz)
     [[ -x $build/fuzz/protocol/fuzz_frame_parser || -n $(find "$build/fuzz" -name fuzz_frame_parser -type f 2>/dev/null) ]] ||
       fail "$build has no libFuzzer binaries (this smoke is registered only where AP_FUZZ_BINARIES is on)"
