@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The QEMU image stops when its host dies (docs/qemu.md, "When the host dies"): the CLI of a
-# `sim run --target qemu` killed with SIGKILL (no destructor runs, so nothing kills QEMU) must
-# not leave qemu-system-arm running: it must be gone within 5 s (it exits at once). Usage: qemu_host_dies.sh SOURCE_DIR
+# QEMU stops when its host dies (docs/qemu.md, "When the host dies"): the CLI of a
+# `sim run --target qemu` killed with SIGKILL (no destructor runs) must not leave
+# qemu-system-arm running: it must be gone within 5 s (the kernel kills it at once).
+# Usage: qemu_host_dies.sh SOURCE_DIR
 set -euo pipefail
 cd "$1"
 tmp=$(mktemp -d)

@@ -4,7 +4,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -17,8 +17,6 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-
-extern char** environ;
 
 namespace ap::sim {
 namespace {
@@ -62,17 +60,37 @@ QemuImage::QemuImage(QemuOptions opt) : opt_(std::move(opt)) {
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addchdir_np(&fa, dir.c_str());
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, (dir + "/qemu.log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawnp(&pid, opt_.qemu.c_str(), &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  if (rc != 0) {
-    errno = rc;
+  // fork + exec rather than posix_spawn, for PR_SET_PDEATHSIG: QEMU gets SIGKILL when the thread
+  // that started it ends, which this object (owned by the board, on that thread) never outlives.
+  // The destructor cannot kill QEMU if this process dies without unwinding (SIGKILL, a sanitizer's
+  // abort), and the image cannot always stop itself: before it has opened its FIFOs, QEMU waits
+  // in open() for a host that is gone (docs/qemu.md, "When the host dies"). Between fork and exec
+  // only async-signal-safe calls: everything they need is built above.
+  const std::string log_path = dir + "/qemu.log";
+  const pid_t parent = ::getpid();
+  int exec_err[2];  // close-on-exec: end of file means exec succeeded, an errno means it failed
+  if (::pipe2(exec_err, O_CLOEXEC) != 0) throw sys_error("pipe");
+  const pid_t pid = ::fork();
+  if (pid < 0) throw sys_error("fork for " + opt_.qemu);
+  if (pid == 0) {
+    int err = 0;
+    if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent) ::_exit(127);
+    const int in = ::open("/dev/null", O_RDONLY);
+    const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (in >= 0 && out >= 0 && ::dup2(in, 0) >= 0 && ::dup2(out, 1) >= 0 && ::dup2(out, 2) >= 0 && ::chdir(dir.c_str()) == 0) {
+      ::execvp(opt_.qemu.c_str(), argv.data());
+    }
+    err = errno;
+    (void)!::write(exec_err[1], &err, sizeof err);
+    ::_exit(127);
+  }
+  ::close(exec_err[1]);
+  int err = 0;
+  const ssize_t got = ::read(exec_err[0], &err, sizeof err);
+  ::close(exec_err[0]);
+  if (got > 0) {
+    ::waitpid(pid, nullptr, 0);
+    errno = err;
     throw sys_error("start " + opt_.qemu + " (the bootstrap installs qemu-system-arm)");
   }
   pid_ = pid;

@@ -39,9 +39,7 @@ volatile bool tick_pending = false;
 // ARM semihosting (BKPT 0xAB): QEMU runs the call in the emulated CPU's thread and returns
 // when it is done, so a whole message moves per call. QEMU's USART model would move one byte
 // per main-loop turn (measured: 0.06x real time for the channel's traffic), docs/qemu.md.
-constexpr std::uint32_t kSysOpen = 0x01, kSysWrite = 0x05, kSysRead = 0x06, kSysExit = 0x18;
-// SYS_EXIT's reason on AArch32 (in r1, not a pointer): any but ApplicationExit makes QEMU exit 1.
-constexpr std::uintptr_t kAdpStoppedRunTimeErrorUnknown = 0x20023;
+constexpr std::uint32_t kSysOpen = 0x01, kSysWrite = 0x05, kSysRead = 0x06;
 constexpr std::uint32_t kModeRb = 1, kModeWb = 5;
 
 std::int32_t semihost(std::uint32_t op, const void* args) {
@@ -49,15 +47,6 @@ std::int32_t semihost(std::uint32_t op, const void* args) {
   register const void* r1 __asm("r1") = args;
   __asm volatile("bkpt 0xAB" : "+r"(r0) : "r"(r1) : "memory");
   return static_cast<std::int32_t>(r0);
-}
-
-// The host is gone (end of file or an error on a FIFO) or never made the FIFOs: nothing can
-// drive or observe the image any more, so it stops QEMU. Idling in WFI instead would spin a
-// host core for ever under -icount sleep=off once its host died without killing it
-// (docs/qemu.md, "When the host dies").
-[[noreturn]] void host_gone() {
-  semihost(kSysExit, reinterpret_cast<const void*>(kAdpStoppedRunTimeErrorUnknown));
-  for (;;) __asm volatile("wfi");  // not reached: QEMU has exited
 }
 
 std::int32_t to_host = -1;   // cosim.to-host, opened for writing
@@ -74,7 +63,7 @@ void flush() {
     const std::uint32_t a[3] = {static_cast<std::uint32_t>(to_host), reinterpret_cast<std::uintptr_t>(out_buf + done),
                                 static_cast<std::uint32_t>(out_len - done)};
     const std::int32_t left = semihost(kSysWrite, a);
-    if (left < 0 || static_cast<std::size_t>(left) > out_len - done) host_gone();
+    if (left < 0 || static_cast<std::size_t>(left) > out_len - done) for (;;) __asm volatile("wfi");
     done = out_len - static_cast<std::size_t>(left);
   }
   out_len = 0;
@@ -87,7 +76,7 @@ void read_exact(std::uint8_t* buf, std::size_t n) {
                                 static_cast<std::uint32_t>(n - done)};
     const std::int32_t left = semihost(kSysRead, a);
     // All n - done bytes unread means end of file: the host is gone.
-    if (left < 0 || static_cast<std::size_t>(left) >= n - done) host_gone();
+    if (left < 0 || static_cast<std::size_t>(left) >= n - done) for (;;) __asm volatile("wfi");
     done = n - static_cast<std::size_t>(left);
   }
 }
@@ -140,7 +129,7 @@ void periph_init() {
   static constexpr char kToImage[] = "cosim.to-image";
   to_host = open_file(kToHost, sizeof kToHost - 1, kModeWb);
   to_image = open_file(kToImage, sizeof kToImage - 1, kModeRb);
-  if (to_host < 0 || to_image < 0) host_gone();
+  if (to_host < 0 || to_image < 0) for (;;) __asm volatile("wfi");
   const std::uint8_t hello[1] = {cosim::kVersion};
   send(cosim::Kind::Hello, hello, 1);
 }
