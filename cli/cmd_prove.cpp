@@ -78,7 +78,7 @@ model::smt::Outcome run_one(const std::vector<model::smt::Obligation>& chosen, s
                             int w) {
   const auto& o = chosen[i];
   model::smt::Outcome r = model::smt::run(o, timeout_ms);
-  std::string line(o.name.size() + 64, '\0');
+  std::string line(static_cast<std::size_t>(w) + o.name.size() + 64, '\0');
   line.resize(static_cast<std::size_t>(std::snprintf(line.data(), line.size(), "[%zu/%zu] %-*s %s %.3f s\n", i + 1,
                                                      chosen.size(), w, o.name.c_str(),
                                                      model::smt::verdict_name(r.verdict), r.seconds)));
