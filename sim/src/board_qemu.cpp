@@ -213,12 +213,19 @@ void SimBoard::qemu_answer(const QemuImage::Message& m) {
     case Kind::Fault: {
       need(p.size() == 17, "fault");
       const std::uint8_t exc = p[0];
-      std::string what = exc == 0xFF ? "stack overflow (the paint's last word was overwritten)"
-                         : exc == 0xFE ? "the co-simulation channel broke"
-                                       : "exception " + std::to_string(exc);
-      throw std::runtime_error("the image faulted: " + what + " at pc " + hex(cosim::get_u32(p.data() + 1)) + " (lr " +
-                               hex(cosim::get_u32(p.data() + 5)) + ", CFSR " + hex(cosim::get_u32(p.data() + 9)) +
-                               ", HFSR " + hex(cosim::get_u32(p.data() + 13)) + ")");
+      const std::uint32_t pc = cosim::get_u32(p.data() + 1);
+      const std::string regs = "(lr " + hex(cosim::get_u32(p.data() + 5)) + ", CFSR " + hex(cosim::get_u32(p.data() + 9)) +
+                               ", HFSR " + hex(cosim::get_u32(p.data() + 13)) + ")";
+      namespace stop = cosim::stop;
+      std::string what;
+      switch (exc) {
+        case stop::kStackRanOut: what = "stack overflow at sp " + hex(pc) + ": no room to stack the fault's frame " + regs; break;
+        case stop::kStackPaint: what = "stack overflow (the thread stack's last painted word was overwritten)"; break;
+        case stop::kHandlerStackPaint: what = "stack overflow (the exception stack's last painted word was overwritten)"; break;
+        case stop::kChannel: what = "the co-simulation channel broke"; break;
+        default: what = "exception " + std::to_string(exc) + " at pc " + hex(pc) + " " + regs; break;
+      }
+      throw std::runtime_error("the image faulted: " + what);
     }
     case Kind::Hello: throw std::runtime_error("the image restarted (a reset: watchdog, fault or lock-up)");
     default: throw std::runtime_error("an unexpected message '" + std::string(1, static_cast<char>(m.kind)) + "'");

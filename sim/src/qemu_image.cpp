@@ -118,24 +118,35 @@ std::string QemuImage::log_tail() const {
   std::stringstream s;
   s << in.rdbuf();
   std::string t = s.str();
+  // QEMU's own verdict ("qemu: fatal: Lockup: ...") comes first, before a register dump that
+  // would push it out of the tail.
+  if (const auto f = t.find("qemu: fatal:"); f != std::string::npos) t = t.substr(f, t.find('\n', f) - f);
   if (t.size() > 400) t = t.substr(t.size() - 400);
   return t.empty() ? std::string("QEMU printed nothing") : "QEMU said: " + t;
 }
 
 void QemuImage::wait_readable(int fd, const char* what) {
-  for (;;) {
+  // In slices, so that a QEMU that exits (its own "fatal: Lockup", a crash) is reported at once
+  // rather than after the whole timeout: the FIFOs are open read-write here, so its exit does
+  // not end them.
+  constexpr int kSliceMs = 200;
+  for (long waited = 0;;) {
     pollfd p{fd, POLLIN, 0};
-    const int r = ::poll(&p, 1, static_cast<int>(opt_.timeout.count()));
+    const int r = ::poll(&p, 1, kSliceMs);
     if (r > 0) return;
     if (r < 0) {
       if (errno == EINTR) continue;
       throw sys_error(what);
     }
+    waited += kSliceMs;
     int status = 0;
-    const bool gone = ::waitpid(pid_, &status, WNOHANG) == pid_;
-    if (gone) pid_ = -1;
-    throw std::runtime_error(std::string("the image went silent (") + what + ", " + std::to_string(opt_.timeout.count()) +
-                             " ms)" + (gone ? "; QEMU exited. " + log_tail() : std::string()));
+    if (pid_ > 0 && ::waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      throw std::runtime_error(std::string("QEMU exited while the host waited for ") + what + "; " + log_tail());
+    }
+    if (waited >= opt_.timeout.count()) {
+      throw std::runtime_error(std::string("the image went silent (") + what + ", " + std::to_string(opt_.timeout.count()) + " ms)");
+    }
   }
 }
 

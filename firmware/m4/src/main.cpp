@@ -9,13 +9,12 @@
 #include "firmware/board_port.hpp"
 #include "firmware/periph.hpp"
 #include "firmware/stack.hpp"
+#include "protocol/cosim/wire.hpp"
 
 namespace {
 // Constructed before run() by the reset handler's constructor pass; it touches no hardware
 // until boot().
 ap::board::Board the_board{ap::fw::board_hardware()};
-// Exception numbers of the image's own stops (the core's are 2..15).
-constexpr std::uint8_t kStackOverflow = 0xFF;
 }  // namespace
 
 namespace ap::fw {
@@ -32,7 +31,8 @@ void run() {
     }
     b->tick();
     ++ticks;
-    if (stack_overflowed()) fault(kStackOverflow, 0, 0, 0, 0);
+    if (stack_overflowed()) fault(cosim::stop::kStackPaint, 0, 0, 0, 0);
+    if (handler_stack_overflowed()) fault(cosim::stop::kHandlerStackPaint, 0, 0, 0, 0);
     tick_done(ticks, take_tx_count(), b->axis_state(board::Axis::X).pos, b->axis_state(board::Axis::Y).pos);
   }
   report(stack_used(), stack_size(), ticks);

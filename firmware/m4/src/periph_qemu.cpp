@@ -109,7 +109,7 @@ void request(cosim::Kind kind, const std::uint8_t* payload, std::size_t n, std::
   send(kind, payload, n);
   std::uint8_t buf[cosim::kMaxPayload];
   std::size_t got = 0;
-  if (receive(buf, got) != cosim::Kind::Reply || got != want) fault(0xFE, 0, 0, 0, 0);
+  if (receive(buf, got) != cosim::Kind::Reply || got != want) fault(cosim::stop::kChannel, 0, 0, 0, 0);
   for (std::size_t i = 0; i < want; ++i) reply[i] = buf[i];
 }
 
@@ -204,7 +204,7 @@ bool tick_wait() {
   std::size_t n = 0;
   const cosim::Kind k = receive(buf, n);
   if (k == cosim::Kind::End) return false;
-  if (k != cosim::Kind::Grant || n != 8) fault(0xFE, 0, 0, 0, 0);
+  if (k != cosim::Kind::Grant || n != 8) fault(cosim::stop::kChannel, 0, 0, 0, 0);
   // Every link byte the host sent before this grant is in before the tick runs.
   const std::uint32_t delivered = cosim::get_u32(buf + 4);
   while (ring.received() != delivered) {

@@ -208,9 +208,6 @@ constexpr std::uintptr_t kSystCsr = 0xE000'E010, kSystRvr = 0xE000'E014, kSystCv
 constexpr std::uintptr_t kNvicIser = 0xE000'E100, kNvicIpr = 0xE000'E400, kShpr3SysTick = 0xE000'ED23;
 constexpr std::uint32_t kIrqTim2 = 28, kIrqTim3 = 29, kIrqUsart1 = 37;
 
-// Exception numbers of this layer's own stops, beside main.cpp's 0xFF.
-constexpr std::uint8_t kClockFault = 0xFD;
-
 // Bounded waits count loop turns, not time: each turn (a peripheral read, a test, a taken
 // branch) takes at least two core cycles, so `us` microseconds' worth of turns lasts at least
 // that long, and ends even if the cycle count is off.
@@ -269,10 +266,10 @@ void clocks() {
   reg(kRccCr) = reg(kRccCr) | kCrPllon;
   const bool ok_pll = wait_for([] { return (reg(kRccCr) & kCrPllrdy) != 0; }, 1000);
   // The record's pc field says which step failed: 0 before the switch, 1 the switch.
-  if (!(ok_vos && ok_ws && ok_msi && ok_pll)) fault(kClockFault, 0, 0, 0, 0);
+  if (!(ok_vos && ok_ws && ok_msi && ok_pll)) fault(cosim::stop::kClock, 0, 0, 0, 0);
   // HPRE, PPRE1, PPRE2 keep their reset value /1.
   reg(kRccCfgr) = (reg(kRccCfgr) & ~kCfgrSwMask) | kCfgrSwPll;
-  if (!wait_for([] { return (reg(kRccCfgr) & kCfgrSwsMask) == kCfgrSwsPll; }, 1000)) fault(kClockFault, 1, 0, 0, 0);
+  if (!wait_for([] { return (reg(kRccCfgr) & kCfgrSwsMask) == kCfgrSwsPll; }, 1000)) fault(cosim::stop::kClock, 1, 0, 0, 0);
 }
 
 void usart_init() {

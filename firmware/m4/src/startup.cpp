@@ -8,10 +8,13 @@
 #include "firmware/app.hpp"
 #include "firmware/periph.hpp"
 #include "firmware/stack.hpp"
+#include "protocol/cosim/wire.hpp"
 
 extern "C" {
 extern std::uint32_t __stack_bottom[];
 extern std::uint32_t __stack_top[];
+extern std::uint32_t __handler_stack_bottom[];
+extern std::uint32_t __handler_stack_top[];
 extern std::uint32_t __data_start[];
 extern std::uint32_t __data_end[];
 extern const std::uint32_t __data_load[];
@@ -21,6 +24,7 @@ extern void (*const __init_array_start[])();
 extern void (*const __init_array_end[])();
 
 [[noreturn]] void Reset_Handler();
+[[noreturn]] void reset_on_thread_stack();
 void Fault_Handler();
 void SysTick_Handler();
 void USART1_IRQHandler();
@@ -57,18 +61,37 @@ std::uint32_t stack_used() {
 
 bool stack_overflowed() { return __stack_bottom[0] != kStackPaint; }
 
+bool handler_stack_overflowed() { return __handler_stack_bottom[0] != kStackPaint; }
+
 }  // namespace ap::fw
 
 extern "C" {
 
-[[noreturn]] void Reset_Handler() {
+// Thread mode moves to its own stack (PSP) before anything else runs; exceptions keep the one
+// the vector table gives (MSP). A thread stack that runs off the bottom of RAM then faults on a
+// push, and the fault handler still has a stack to report it from: with one stack for both,
+// the fault's own entry faults again and the core locks up (QEMU then aborts with "Lockup", no
+// address). Naked: nothing may touch the stack between the switch and the C++ that follows.
+[[gnu::naked, noreturn]] void Reset_Handler() {
+  __asm volatile(
+      "movw r0, #:lower16:__stack_top\n"
+      "movt r0, #:upper16:__stack_top\n"
+      "msr psp, r0\n"
+      "movs r0, #2\n"  // CONTROL.SPSEL: thread mode uses PSP
+      "msr control, r0\n"
+      "isb\n"
+      "b reset_on_thread_stack\n");
+}
+
+[[noreturn]] void reset_on_thread_stack() {
   // Paint first, while nothing below this frame is in use: every word never written since
-  // reset still holds the pattern at the end of a run.
+  // reset still holds the pattern at the end of a run. Nothing has run on the handler stack.
   std::uintptr_t sp = 0;
   __asm volatile("mov %0, sp" : "=r"(sp));
   const std::uintptr_t limit_addr = sp - kPaintMargin * sizeof(std::uint32_t);
   auto* limit = reinterpret_cast<std::uint32_t*>(limit_addr);
   for (std::uint32_t* p = __stack_bottom; p < limit; ++p) *p = ap::fw::kStackPaint;
+  for (std::uint32_t* p = __handler_stack_bottom; p < __handler_stack_top; ++p) *p = ap::fw::kStackPaint;
   const std::uint32_t* src = __data_load;
   for (std::uint32_t* p = __data_start; p < __data_end; ++p) *p = *src++;
   for (std::uint32_t* p = __bss_start; p < __bss_end; ++p) *p = 0;
@@ -80,11 +103,21 @@ extern "C" {
   for (;;) __asm volatile("wfi");  // the run ended: the host stops the machine
 }
 
-// The exception frame the core stacked: r0 r1 r2 r3 r12 lr pc xpsr.
+// The exception frame the core stacked: r0 r1 r2 r3 r12 lr pc xpsr. A frame that does not lie
+// inside the stack it was pushed on was never written: the push that should have stacked it
+// faulted (CFSR STKERR), because that stack had run out. The fault is then the overflow, and
+// the stack pointer it left is its address.
 [[noreturn]] void fault_frame(const std::uint32_t* frame, std::uint32_t exc_return) {
   std::uint32_t ipsr = 0;
   __asm volatile("mrs %0, ipsr" : "=r"(ipsr));
-  (void)exc_return;
+  const bool on_thread_stack = (exc_return & 4U) != 0;
+  const std::uint32_t* lo = on_thread_stack ? __stack_bottom : __handler_stack_bottom;
+  const std::uint32_t* hi = on_thread_stack ? __stack_top : __handler_stack_top;
+  const auto at = [](const std::uint32_t* p) { return reinterpret_cast<std::uintptr_t>(p); };
+  if (at(frame) < at(lo) || at(frame) + 8 * sizeof(std::uint32_t) > at(hi)) {
+    ap::fw::fault(ap::cosim::stop::kStackRanOut, static_cast<std::uint32_t>(reinterpret_cast<std::uintptr_t>(frame)), exc_return,
+                  reg(kCfsr), reg(kHfsr));
+  }
   ap::fw::fault(static_cast<std::uint8_t>(ipsr & 0xFFU), frame[6], frame[5], reg(kCfsr), reg(kHfsr));
 }
 
@@ -117,7 +150,7 @@ constexpr auto make_table() {
     Vector v[16 + kExternalIrqs];
   } t{};
   for (auto& e : t.v) e.handler = &Fault_Handler;
-  t.v[0].stack = __stack_top;
+  t.v[0].stack = __handler_stack_top;  // MSP; the reset handler gives thread mode __stack_top
   t.v[1].handler = &Reset_Handler;
   t.v[11].handler = &Fault_Handler;  // SVCall: unused, so unexpected
   t.v[15].handler = &SysTick_Handler;

@@ -11,7 +11,10 @@ inline constexpr std::uint32_t kStackPaint = 0xA5A5'5A5AU;
 std::uint32_t stack_size();
 // Bytes from the top of the stack down to the lowest word no longer holding the paint.
 std::uint32_t stack_used();
-// The lowest stack word was overwritten: the stack ran (at least) to its end.
+// The lowest word of the thread stack was overwritten: it ran (at least) to its end.
 bool stack_overflowed();
+// The same for the exception stack (MSP), which sits above the thread stack: its overflow runs
+// into the thread stack's top, so this check is the only one that sees it.
+bool handler_stack_overflowed();
 
 }  // namespace ap::fw

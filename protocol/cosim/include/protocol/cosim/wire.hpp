@@ -36,6 +36,16 @@ enum class Kind : std::uint8_t {
   End = 'E',        // []: report and stop
 };
 
+// The image's own stops, in a Fault message's exception byte beside the core's exception
+// numbers (1..15, interrupts 16..97); the board's fault record (docs/qemu.md) uses the same.
+namespace stop {
+inline constexpr std::uint8_t kStackPaint = 0xFF;         // the thread stack's last painted word was overwritten
+inline constexpr std::uint8_t kChannel = 0xFE;            // the co-simulation channel broke
+inline constexpr std::uint8_t kClock = 0xFD;              // the STM32L476's clock tree did not start
+inline constexpr std::uint8_t kStackRanOut = 0xFC;        // a fault's frame could not be stacked: pc = the stack pointer
+inline constexpr std::uint8_t kHandlerStackPaint = 0xFB;  // the exception stack's last painted word was overwritten
+}  // namespace stop
+
 // Devices on the board's SPI buses (chip selects, docs/qemu.md "Peripherals").
 enum class SpiDevice : std::uint8_t { TmcX = 0, TmcY = 1, Fram = 2, EncoderX = 3, EncoderY = 4, Expander = 5 };
 inline constexpr std::uint8_t kSpiDevices = 6;
