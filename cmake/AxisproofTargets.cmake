@@ -43,11 +43,12 @@ if(AP_FUZZ_BINARIES AND NOT AP_FUZZ AND NOT AP_MCU_ONLY)
 endif()
 set(AP_CORE_FLAGS -fno-exceptions -fno-rtti)
 set(AP_CORE_LIBS "" CACHE INTERNAL "core libraries")
+set(AP_CORE_HEADER_LIBS "" CACHE INTERNAL "header-only core libraries")
 
 function(ap_core_library name)
   cmake_parse_arguments(A "" "" "SOURCES;DEPS" ${ARGN})
   foreach(dep IN LISTS A_DEPS)
-    if(NOT dep STREQUAL "ap_codec" AND NOT dep IN_LIST AP_CORE_LIBS)
+    if(NOT dep STREQUAL "ap_codec" AND NOT dep IN_LIST AP_CORE_LIBS AND NOT dep IN_LIST AP_CORE_HEADER_LIBS)
       message(FATAL_ERROR "layer rule: core library ${name} may not depend on ${dep} (only core libraries and ap_codec)")
     endif()
   endforeach()
@@ -59,6 +60,14 @@ function(ap_core_library name)
     COMMAND ${CMAKE_COMMAND} -E env NM=${CMAKE_NM} ${CMAKE_SOURCE_DIR}/ci/check-no-heap $<TARGET_FILE:${name}>
     COMMENT "heap check: ${name}" VERBATIM)
   set(AP_CORE_LIBS ${AP_CORE_LIBS} ${name} CACHE INTERNAL "core libraries")
+endfunction()
+
+# A header-only core library (templates only): nothing to compile, so no archive for the
+# heap check or the Cortex-M4 symbol check; its users' archives carry what it instantiates.
+function(ap_core_header_library name)
+  add_library(${name} INTERFACE)
+  target_include_directories(${name} INTERFACE ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  set(AP_CORE_HEADER_LIBS ${AP_CORE_HEADER_LIBS} ${name} CACHE INTERNAL "header-only core libraries")
 endfunction()
 
 function(_ap_require_profile what)

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "core/i2c/port.hpp"
-#include "core/i2c/result.hpp"
+#include "core/result/result.hpp"
 #include "core/icm20789/registers.hpp"
 #include "core/icm20789/rotation.hpp"
 
@@ -22,7 +22,7 @@ enum class Error : std::uint8_t {
 };
 
 template <class T>
-using Result = i2c::Result<T, Error>;
+using Result = ap::Result<T, Error>;
 
 // What configure() writes (docs/sensors.md "ICM-20789: configuration"):
 // PWR_MGMT_1: SLEEP = 0, CLKSEL = 1 (PLL when ready, the datasheet's choice for full gyro

@@ -1,8 +1,9 @@
 #pragma once
-// Typed errors for the TMC2130 module and a minimal expected-like carrier (C++20 has no
-// std::expected, and the core may not throw).
+// Typed errors for the TMC2130 module, carried by the core's one Result template.
 #include <cstdint>
 #include <string_view>
+
+#include "core/result/result.hpp"
 
 namespace ap::tmc2130 {
 
@@ -38,20 +39,6 @@ constexpr std::string_view error_name(Error e) {
 }
 
 template <class T>
-class Result {
- public:
-  constexpr Result(T value) : value_(value), ok_(true) {}          // NOLINT: implicit on purpose
-  constexpr Result(Error error) : value_{}, error_(error) {}       // NOLINT: implicit on purpose
-  constexpr bool ok() const { return ok_; }
-  constexpr explicit operator bool() const { return ok_; }
-  constexpr const T& value() const { return value_; }
-  constexpr const T& operator*() const { return value_; }
-  constexpr Error error() const { return error_; }
-
- private:
-  T value_;
-  Error error_{};
-  bool ok_ = false;
-};
+using Result = ap::Result<T, Error>;
 
 }  // namespace ap::tmc2130

@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "core/i2c/port.hpp"
-#include "core/i2c/result.hpp"
+#include "core/result/result.hpp"
 #include "core/tmp117/convert.hpp"
 #include "core/tmp117/registers.hpp"
 
@@ -22,7 +22,7 @@ enum class Error : std::uint8_t {
 };
 
 template <class T>
-using Result = i2c::Result<T, Error>;
+using Result = ap::Result<T, Error>;
 
 // The configuration this driver writes (docs/sensors.md "TMP117: conversion"): continuous
 // conversion (MOD = 00), 8 averages (AVG = 01), CONV = 010: one result every 250 ms, of

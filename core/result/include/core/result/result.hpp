@@ -1,7 +1,7 @@
 #pragma once
-// A value or a typed error (C++20 has no std::expected and the core may not throw), shared by
-// the I2C sensor drivers; each names its own error enum.
-namespace ap::i2c {
+// A value or a typed error: C++20 has no std::expected and the core may not throw. Every
+// driver of the core returns its errors through this one template with its own error enum.
+namespace ap {
 
 template <class T, class E>
 class Result {
@@ -20,4 +20,4 @@ class Result {
   bool ok_ = false;
 };
 
-}  // namespace ap::i2c
+}  // namespace ap
