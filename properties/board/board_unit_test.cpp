@@ -345,6 +345,29 @@ TEST(BoardEndstop, HitStopsAtOnceAndRefusesFurtherMotionTowardIt) {
   EXPECT_EQ(r.last_echo()->y.status, S::StoppedByUser);
 }
 
+// docs/board.md "Echo content": REACHED is standing at the target. A switch that halts a move
+// on the move's own target ended nothing the move did not reach (docs/echo-model.md, found by
+// the board fuzz target): here a goto to the current position given in the very tick the max
+// switch turns on under a carriage creeping up at its start speed, still on step 0.
+TEST(BoardEndstop, HaltOnTheMovesOwnTargetIsReached) {
+  Rig r;
+  r.boot();
+  ASSERT_EQ(r.board->shutdown(), ShutdownResult::Ok);  // a valid step counter: the position is known
+  r.boot();
+  ASSERT_EQ(r.ax(Axis::Y).homed, 1);
+  r.send(C::Nop, 0, C::Jog, 1);
+  r.tick();
+  ASSERT_GT(r.ax(Axis::Y).v, 0);
+  ASSERT_EQ(r.ax(Axis::Y).pos, 0);
+  r.in.endstop_max[1] = 1;
+  r.send(C::Nop, 0, C::Goto, 0);
+  r.tick();
+  EXPECT_EQ(r.ax(Axis::Y).v, 0);
+  EXPECT_EQ(r.ax(Axis::Y).latch_max, 1);
+  EXPECT_EQ(r.last_echo()->y.status, S::TargetReached);
+  EXPECT_EQ(r.last_echo()->y.data, 0);
+}
+
 // docs/motion.md §4 (G8): a latch clears only after a step away with the input released. A
 // switch active at power-up is the carriage resting on it: released by a bounce, it must still
 // refuse motion toward it (found by the board fuzz target).

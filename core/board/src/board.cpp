@@ -318,7 +318,19 @@ void Board::step_axes() {
       // ends the homing first: then it is a plain endstop stop; docs/echo-model.md).
       // The Home may also be this tick's command, given while moving down onto the switch.
       const bool homing = before.mode == axis::Mode::Home || in.cmd.kind == axis::CmdKind::Home;
-      event_[i] = homing && edge == axis::Edge::G && r.state.homed != 0 ? AxisEvent::Reached : AxisEvent::Endstop;
+      // A move whose carriage the switch halts on the move's own target reached what was
+      // asked: REACHED is standing at the target, as for a stop in the tick of arrival
+      // (docs/echo-model.md). The move is this tick's accepted goto / move, or the one held.
+      const bool taken = in.cmd.kind != axis::CmdKind::None && r.out.error == axis::Error::None;
+      const bool move = taken ? (in.cmd.kind == axis::CmdKind::MoveAbs || in.cmd.kind == axis::CmdKind::MoveRel)
+                              : before.mode == axis::Mode::Position;
+      if (homing && edge == axis::Edge::G && r.state.homed != 0) {
+        event_[i] = AxisEvent::Reached;
+      } else if (move && r.state.pos == r.state.target) {
+        event_[i] = AxisEvent::Reached;
+      } else {
+        event_[i] = AxisEvent::Endstop;
+      }
     } else if (r.out.error == axis::Error::HomeFailed) {
       event_[i] = AxisEvent::HomeFailed;
     } else if (before.mode == axis::Mode::Jog && r.state.mode == axis::Mode::Idle && in.link_alive == 0 &&
