@@ -263,6 +263,22 @@ TEST(EchoModelPath, StopMidPath) {
   EXPECT_TRUE(b.bad.empty()) << b.report();
 }
 
+// Sleep stops the path as `stop` does (docs/cnc.md "Stops"): a path that has not moved yet
+// (waiting for `path_end`) drops its queue at once, in the handler, so a parameter later in
+// the same frame finds no path and is taken (docs/echo-model.md "The coordinated path").
+// Found by BoardEchoModel.EveryEchoMatchesTheModel (RC seed 444): the board refused it.
+TEST(EchoModelPath, SleepDropsAStandingPathAtOnce) {
+  PathBench b;
+  b.send(CommandId::SetIrun, 0, CommandId::PathLine, 0);
+  ASSERT_TRUE(b.rig.board->path().active());
+  b.send(CommandId::PeriphOff, 0, CommandId::SetSlowSpeed, 500);
+  EXPECT_FALSE(b.rig.board->path().active());
+  EXPECT_EQ(b.last.x.status, EchoStatus::Sleeping);
+  EXPECT_EQ(b.last.y.status, EchoStatus::Sleeping);
+  EXPECT_EQ(b.rig.board->store().current().slow_speed_um_s, 500U);
+  EXPECT_TRUE(b.bad.empty()) << b.report();
+}
+
 // An endstop toward which an axis steps halts the path: both axes ENDSTOP.
 TEST(EchoModelPath, EndstopHaltsThePath) {
   PathBench b;

@@ -658,8 +658,7 @@ HandlerStatus Board::on_stop(void* ctx, Axis a, std::int32_t) {
   auto* b = static_cast<Board*>(ctx);
   if (b->path_.active()) {
     // A stop of either axis stops the path: both axes share one S-curve (docs/cnc.md "Stops").
-    if (!b->path_.stopping()) b->path_stop_event_ = AxisEvent::StoppedByUser;
-    b->path_.stop();
+    b->stop_path_by_user();
     return HandlerStatus::Done;
   }
   return b->set_axis_command(a, c::CommandId::Stop, {axis::CmdKind::Stop, 0, 0, 0});
@@ -824,6 +823,10 @@ void Board::driver_fault(std::size_t i, tmc::Error e) {
 HandlerStatus Board::on_periph_off(void* ctx, Axis, std::int32_t) {
   auto* b = static_cast<Board*>(ctx);
   b->sleeping_ = true;
+  // Sleep stops the path as `stop` does (docs/cnc.md "Stops"), here in the handler: a path
+  // that has not moved yet drops its queue at once, so a command later in the same frame
+  // finds no path (docs/echo-model.md "The coordinated path").
+  if (b->path_.active()) b->stop_path_by_user();
   for (std::size_t i = 0; i < kAxes; ++i) {
     // A motion command earlier in this frame that the axis core would refuse (out of the
     // soft limits, toward an endstop, ...) is still reported as refused: the stop replaces

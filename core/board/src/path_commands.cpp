@@ -135,6 +135,13 @@ void Board::commit_path_frame(const frame::CommandFrame& f) {
   for (std::size_t i = 0; i < kAxes; ++i) event_[i] = AxisEvent::None;
 }
 
+// A user's stop (`stop` of either axis, sleep): a running path brakes along its S-curve, a
+// standing one drops its queue at once (path::Executor::stop). The first cause names the end.
+void Board::stop_path_by_user() {
+  if (!path_.stopping()) path_stop_event_ = AxisEvent::StoppedByUser;
+  path_.stop();
+}
+
 void Board::step_path(bool alive) {
   // A lost link, a closed session, a block or sleep stop the path along its own S-curve: a
   // controlled stop (docs/cnc.md "Stops"), as the axis core brakes a jog.
@@ -143,8 +150,7 @@ void Board::step_path(bool alive) {
       path_stop_event_ = AxisEvent::LinkLost;
       path_.stop();
     } else if (block_ != Block::None || sleeping_) {
-      path_stop_event_ = AxisEvent::StoppedByUser;
-      path_.stop();
+      stop_path_by_user();
     }
   }
   path::TickIn ti;

@@ -284,6 +284,7 @@ class Board {
   void commit_path_frame(const frame::CommandFrame& f);
   path::Limits path_limits() const;
   void step_path(bool alive);
+  void stop_path_by_user();
   static frame::AxisEcho echo_axis(void* ctx, Axis a);
   static frame::AxisEcho echo_axis_replay(void* ctx, Axis a);
   static std::int32_t echo_subscriber(void* ctx, frame::SubscriberSlot slot);
