@@ -342,10 +342,11 @@ void Board::step_axes() {
       // passes over its target still brakes beyond it, and stays STOPPED (docs/echo-model.md).
       event_[i] = AxisEvent::Reached;
     } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && !moving(before) &&
-               in.cmd.kind == axis::CmdKind::None && in.blocked == 0) {
+               (in.cmd.kind == axis::CmdKind::None || r.out.error != axis::Error::None) && in.blocked == 0) {
       // A move standing short of its target (the reversal stop of a move that turned round)
       // whose way on is closed by an active or latched endstop: the axis core drops it (edge
-      // I, motion.md §4), and the endstop is what ended it (docs/echo-model.md).
+      // I, motion.md §4), and the endstop is what ended it (docs/echo-model.md). A command of
+      // this tick the core refused changed nothing and is its own echo: it hides no event.
       event_[i] = AxisEvent::Endstop;
     } else if (r.state.mode == axis::Mode::Position && !moving(r.state) && r.state.pos == r.state.target) {
       // Standing on the target of a move: the axis core halted there this tick (at or below
