@@ -14,8 +14,8 @@
 
 #include "board_rig.hpp"
 #include "rig_sensors.hpp"
-#include "protocol/codec/commands.hpp"
 #include "core/frame/echo_codec.hpp"
+#include "protocol/codec/commands.hpp"
 #include "protocol/codec/crc16.hpp"
 #include "protocol/codec/subscribers.hpp"
 #include "models/echo/board_checker.hpp"
@@ -314,18 +314,17 @@ RC_GTEST_PROP(BoardEchoModel, EveryEchoMatchesTheModel, ()) {
 // stop at rest.
 TEST(BoardEchoModel, RefusalBesideAMoveTheSwitchEndsKeepsTheEndstop) {
   Bench b(true);
-  const auto frame = [&b](std::uint8_t xid, std::int32_t xd, std::uint8_t yid, std::int32_t yd) {
+  const auto send = [&b](CommandId x, std::int32_t xd, CommandId y, std::int32_t yd) {
     RawFrame f;
-    f.x = {xid, xd};
-    f.y = {yid, yd};
+    f.x = {static_cast<std::uint8_t>(x), xd};
+    f.y = {static_cast<std::uint8_t>(y), yd};
     b.run(SendFrame{f});
   };
-  const auto id = [](CommandId c) { return static_cast<std::uint8_t>(c); };
-  frame(id(CommandId::Jog), -2, id(CommandId::Jog), -2);
-  frame(id(CommandId::Goto), 198000, id(CommandId::Stop), 0);
+  send(CommandId::Jog, -2, CommandId::Jog, -2);
+  send(CommandId::Goto, 198000, CommandId::Stop, 0);
   b.run(Endstop{0, true, true});
-  frame(id(CommandId::Goto), 198000, id(CommandId::SetPitch), 50);
-  frame(id(CommandId::Stop), 0, id(CommandId::Move), -60000);
+  send(CommandId::Goto, 198000, CommandId::SetPitch, 50);
+  send(CommandId::Stop, 0, CommandId::Move, -60000);
   EXPECT_TRUE(b.bad.empty()) << (b.bad.empty() ? "" : b.bad.front());
   frame::EchoFrame last{};
   ASSERT_TRUE(frame::parse_echo(b.rig.tx.back(), last).ok());

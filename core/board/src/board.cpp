@@ -301,7 +301,11 @@ void Board::step_axes() {
     const axis::State before = axes_[i];
     const axis::StepResult r = axis::step(before, in, derived_.cfg[i]);
     axes_[i] = r.state;
-    if (in.cmd.kind != axis::CmdKind::None && r.out.error != axis::Error::None) {
+    // This tick's command took effect unless the axis core refused it; a refused command
+    // changed nothing and is its own echo, so it neither starts nor hides an event.
+    const bool refused = in.cmd.kind != axis::CmdKind::None && r.out.error != axis::Error::None;
+    const bool took = in.cmd.kind != axis::CmdKind::None && !refused;
+    if (refused) {
       refused_[i] = static_cast<std::uint8_t>(pending_id_[i]);
       ++counters_.refused_parts;
     } else if (in.cmd.kind == axis::CmdKind::Stop) {
@@ -309,7 +313,7 @@ void Board::step_axes() {
       // a stop ends one only if the axis was moving or held a mode; at rest it changes
       // nothing, so a REACHED stays REACHED (docs/echo-model.md).
       if (moving(before) || before.mode != axis::Mode::Idle) event_[i] = AxisEvent::StoppedByUser;
-    } else if (in.cmd.kind != axis::CmdKind::None) {
+    } else if (took) {
       event_[i] = AxisEvent::None;  // an accepted motion command starts a new motion
     }
     const axis::Edge edge = r.out.edge;
@@ -321,16 +325,11 @@ void Board::step_axes() {
       // A move whose carriage the switch halts on the move's own target reached what was
       // asked: REACHED is standing at the target, as for a stop in the tick of arrival
       // (docs/echo-model.md). The move is this tick's accepted goto / move, or the one held.
-      const bool taken = in.cmd.kind != axis::CmdKind::None && r.out.error == axis::Error::None;
-      const bool move = taken ? (in.cmd.kind == axis::CmdKind::MoveAbs || in.cmd.kind == axis::CmdKind::MoveRel)
-                              : before.mode == axis::Mode::Position;
-      if (homing && edge == axis::Edge::G && r.state.homed != 0) {
-        event_[i] = AxisEvent::Reached;
-      } else if (move && r.state.pos == r.state.target) {
-        event_[i] = AxisEvent::Reached;
-      } else {
-        event_[i] = AxisEvent::Endstop;
-      }
+      const bool move = took ? (in.cmd.kind == axis::CmdKind::MoveAbs || in.cmd.kind == axis::CmdKind::MoveRel)
+                             : before.mode == axis::Mode::Position;
+      const bool homed_here = homing && edge == axis::Edge::G && r.state.homed != 0;
+      const bool on_target = move && r.state.pos == r.state.target;
+      event_[i] = homed_here || on_target ? AxisEvent::Reached : AxisEvent::Endstop;
     } else if (r.out.error == axis::Error::HomeFailed) {
       event_[i] = AxisEvent::HomeFailed;
     } else if (before.mode == axis::Mode::Jog && r.state.mode == axis::Mode::Idle && in.link_alive == 0 &&
@@ -342,11 +341,10 @@ void Board::step_axes() {
       // passes over its target still brakes beyond it, and stays STOPPED (docs/echo-model.md).
       event_[i] = AxisEvent::Reached;
     } else if (before.mode == axis::Mode::Position && r.state.mode == axis::Mode::Idle && !moving(before) &&
-               (in.cmd.kind == axis::CmdKind::None || r.out.error != axis::Error::None) && in.blocked == 0) {
+               !took && in.blocked == 0) {
       // A move standing short of its target (the reversal stop of a move that turned round)
       // whose way on is closed by an active or latched endstop: the axis core drops it (edge
-      // I, motion.md §4), and the endstop is what ended it (docs/echo-model.md). A command of
-      // this tick the core refused changed nothing and is its own echo: it hides no event.
+      // I, motion.md §4), and the endstop is what ended it (docs/echo-model.md).
       event_[i] = AxisEvent::Endstop;
     } else if (r.state.mode == axis::Mode::Position && !moving(r.state) && r.state.pos == r.state.target) {
       // Standing on the target of a move: the axis core halted there this tick (at or below
