@@ -128,7 +128,7 @@ constexpr bool kSettleCheck = false;
 Rig* fresh_rig() {
   static const Rig pristine;
   static Rig rig;
-  static_assert(sizeof(Rig) == 33624, "a Rig member was added or changed: reset it below");
+  static_assert(sizeof(Rig) == 33640, "a Rig member was added or changed: reset it below");
   rig.board.reset();
   rig.fram = pristine.fram;
   rig.tmc = pristine.tmc;
@@ -141,6 +141,7 @@ Rig* fresh_rig() {
   rig.tx.clear();
   rig.motor = pristine.motor;
   rig.steps_total = pristine.steps_total;
+  rig.rotor_256 = pristine.rotor_256;
   rig.seq = pristine.seq;
   return &rig;
 }

@@ -47,7 +47,10 @@ struct Rig {
   Inputs in{};
   std::vector<Echo> tx;  // every echo the board sent, in order
   std::array<MotorOutput, kAxes> motor{};
-  std::array<std::int64_t, kAxes> steps_total{};
+  std::array<std::int64_t, kAxes> steps_total{};  // STEP edges the core sent, signed by DIR
+  // How far each motor turned, in 1/256 full step, as the TMC2130 model lets it: nothing
+  // while the power stage is off (TOFF = 0 or DRV_ENN high), CHOPCONF.MRES per edge.
+  std::array<std::int64_t, kAxes> rotor_256{};
   std::unique_ptr<Board> board;
   std::uint16_t seq = 0;
 
@@ -63,7 +66,10 @@ struct Rig {
   static void drive(void* ctx, Axis a, const MotorOutput& m) {
     auto* r = static_cast<Rig*>(ctx);
     r->motor[static_cast<std::size_t>(a)] = m;
-    r->steps_total[static_cast<std::size_t>(a)] += m.dir * static_cast<std::int64_t>(m.steps);
+    const auto i = static_cast<std::size_t>(a);
+    r->steps_total[i] += m.dir * static_cast<std::int64_t>(m.steps);
+    r->tmc[i].set_drv_enn(!m.enable);
+    r->rotor_256[i] += r->tmc[i].step(m.steps, m.dir);
   }
   static void uart(void* ctx, std::span<const std::uint8_t> bytes) {
     Echo e{};

@@ -54,6 +54,41 @@ TEST(BoardBoot, BlankFramGivesDefaultsAndDriversGetStoredCurrents) {
   EXPECT_EQ(r.ax(Axis::X).homed, 0);  // no encoder, no valid counter
 }
 
+// docs/tmc2130.md "Boot configuration": the register words every driver holds after boot,
+// written out from that table (defaults: 16 microsteps, run 16, hold 8, SGT 0).
+TEST(BoardBoot, EveryDriverIsConfiguredAndSwitchedOn) {
+  Rig r;
+  ASSERT_TRUE(r.boot().drivers_ok);
+  for (auto& chip : r.tmc) {
+    // TOFF 3, HSTRT 4 (bits 6..4), HEND 1 (bits 10..7), TBL 2 (bits 16..15), chm 0, vsense 0,
+    // MRES 4 (bits 27..24), intpol 1 (bit 28).
+    EXPECT_EQ(chip.chip_register(tmc::Reg::CHOPCONF), 0x3u | (4u << 4) | (1u << 7) | (2u << 15) | (4u << 24) | (1u << 28));
+    // diag0_error (5), diag0_otpw (6), diag1_stall (8); en_pwm_mode (2) off: SpreadCycle.
+    EXPECT_EQ(chip.chip_register(tmc::Reg::GCONF), (1u << 5) | (1u << 6) | (1u << 8));
+    EXPECT_EQ(chip.chip_register(tmc::Reg::IHOLD_IRUN), (6u << 16) | (16u << 8) | 8u);
+    EXPECT_EQ(chip.chip_register(tmc::Reg::TPOWERDOWN), 10u);
+    EXPECT_EQ(chip.chip_register(tmc::Reg::TCOOLTHRS), 0xFFFFFu);
+    EXPECT_EQ(chip.chip_register(tmc::Reg::COOLCONF), 0u);  // SGT 0, CoolStep off (semin 0)
+    EXPECT_TRUE(chip.power_stage_on());
+  }
+}
+
+// The motor turns as far as the axis asked: 10 mm at a 2 mm lead is 5 turns, 1000 full steps
+// of a 200-step motor, in the chip's 1/256 steps (the TMC2130 model moves nothing while its
+// power stage is off, so a board that never switched its drivers on fails here).
+TEST(BoardBoot, AGotoTurnsTheMotorThroughTheDriver) {
+  Rig r;
+  r.in.encoder[0] = {0, 0, 1};  // absolute position 0 at power-up: the axis is referenced
+  r.boot();
+  r.send(C::Goto, 10000);
+  for (int t = 0; t < 4000 && r.rotor_256[0] != 1000 * 256; ++t) {
+    if (t % 100 == 99) r.send(C::Nop, 0);
+    r.tick();
+  }
+  EXPECT_EQ(r.rotor_256[0], 1000 * 256);
+  EXPECT_EQ(r.steps_total[0], 16000);
+}
+
 TEST(BoardEcho, EchoIsBuiltAfterTheCommandTookEffect) {
   Rig r;
   r.boot();

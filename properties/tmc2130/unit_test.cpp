@@ -340,3 +340,51 @@ TEST(tmc2130_docs, register_map_in_docs_matches_table) {
 }
 
 }  // namespace
+
+// The power stage as the datasheet states it, written as raw datagrams (not through the
+// firmware's driver): 5.5 CHOPCONF (0x6C) TOFF bits 3..0, %0000 = driver disabled; MRES bits
+// 27..24, %0000 = 256 microsteps ... %1000 = full step; pin DRV_ENN high = outputs off.
+namespace {
+chip::Datagram write_chopconf(std::uint32_t v) {
+  return {0x80 | 0x6C, static_cast<std::uint8_t>(v >> 24), static_cast<std::uint8_t>(v >> 16),
+          static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)};
+}
+}  // namespace
+
+TEST(tmc2130_power_stage, reset_chip_does_not_turn_the_motor) {
+  ap::model::tmc2130::Device d;
+  EXPECT_FALSE(d.power_stage_on());
+  EXPECT_EQ(d.step(100, 1), 0);
+  EXPECT_EQ(d.microsteps(), 256);  // MRES = 0 after reset
+}
+
+TEST(tmc2130_power_stage, toff_nonzero_turns_the_motor_by_mres) {
+  ap::model::tmc2130::Device d;
+  (void)d.transfer(write_chopconf(0x04000003u));  // MRES 4, TOFF 3
+  EXPECT_TRUE(d.power_stage_on());
+  EXPECT_EQ(d.microsteps(), 16);
+  EXPECT_EQ(d.step(16, 1), 256);  // 16 edges at 1/16 = one full step
+  EXPECT_EQ(d.step(3, -1), -48);
+  (void)d.transfer(write_chopconf(0x08000001u));  // full step, TOFF 1
+  EXPECT_EQ(d.step(2, 1), 512);
+  (void)d.transfer(write_chopconf(0x08000000u));  // TOFF back to 0: off again
+  EXPECT_FALSE(d.power_stage_on());
+  EXPECT_EQ(d.step(2, 1), 0);
+}
+
+TEST(tmc2130_power_stage, drv_enn_high_switches_the_outputs_off) {
+  ap::model::tmc2130::Device d;
+  (void)d.transfer(write_chopconf(0x00000003u));
+  d.set_drv_enn(true);
+  EXPECT_FALSE(d.power_stage_on());
+  EXPECT_EQ(d.step(10, 1), 0);
+  d.set_drv_enn(false);
+  EXPECT_EQ(d.step(10, 1), 10);  // 256 microsteps: one 1/256 step per edge
+}
+
+TEST(tmc2130_power_stage, a_power_cycle_switches_the_chopper_off) {
+  ap::model::tmc2130::Device d;
+  (void)d.transfer(write_chopconf(0x04000003u));
+  d.power_cycle();
+  EXPECT_FALSE(d.power_stage_on());
+}

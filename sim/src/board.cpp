@@ -139,9 +139,11 @@ SimBoard::~SimBoard() {
   }
 }
 
-std::int32_t SimBoard::usteps_per_rev() const {
-  const std::int32_t ms = board_ ? board_->mechanics().microsteps : 16;
-  return machine_.full_steps * std::max(ms, 1);
+std::int32_t SimBoard::usteps_per_rev(std::size_t a) const {
+  // The chip's own MRES decides how far a STEP edge turns the motor, not the firmware's
+  // parameter: a board whose MRES write never arrived moves 1/256 steps (docs/tmc2130.md
+  // "Device model").
+  return machine_.full_steps * tmc_[a].microsteps();
 }
 
 void SimBoard::seed_fram() {
@@ -204,8 +206,6 @@ void SimBoard::boot() {
 }
 
 void SimBoard::fill_inputs(board::Inputs& in) {
-  const double per_rev = static_cast<double>(usteps_per_rev());
-  (void)per_rev;
   for (std::size_t a = 0; a < board::kAxes; ++a) {
     const double c = carriage_um_[a];
     auto level = [](std::int8_t force, bool physical) -> std::uint8_t {
@@ -290,18 +290,24 @@ void SimBoard::motor_effect(std::size_t a, const board::MotorOutput& o) {
   s->out_[a] = o;
   const std::int64_t t0 = static_cast<std::int64_t>(s->ticks_) * kNsPerTick;
   axis::Output out;
-  out.steps = o.enable ? o.steps : 0;
+  out.steps = o.steps;   // the STEP pin toggles whatever the driver does with it
   out.dir = o.dir;
   out.step_speed = static_cast<std::int32_t>(std::min<std::uint64_t>(std::uint64_t{o.step_hz} * axis::kSpeedScale,
                                                                      axis::kFineSpeedMax));
   std::vector<std::int64_t> edges;
   s->clock_[a].tick(t0, out, edges);
-  const double step_um = static_cast<double>(s->machine_.lead_um) / s->usteps_per_rev();
-  s->carriage_um_[a] += o.dir * step_um * static_cast<double>(edges.size());
+  // The driver decides whether the edges turn the motor (DRV_ENN, CHOPCONF.TOFF) and how far
+  // (CHOPCONF.MRES): the TMC2130 model, in 1/256 full steps.
+  tmc_[a].set_drv_enn(!o.enable);
+  const std::int64_t turned = tmc_[a].step(static_cast<std::int64_t>(edges.size()), o.dir);
+  const double um_per_256th = static_cast<double>(s->machine_.lead_um) / (256.0 * s->machine_.full_steps);
+  s->carriage_um_[a] += um_per_256th * static_cast<double>(turned);
   AxisRec& r = s->rec_[a];
-  for (const std::int64_t e : edges) {
-    r.edges_ns.push_back(e);
-    r.dirs.push_back(o.dir);
+  if (turned != 0) {
+    for (const std::int64_t e : edges) {
+      r.edges_ns.push_back(e);
+      r.dirs.push_back(o.dir);
+    }
   }
   if (s->wave_) {
     const bool dir = o.dir > 0;
@@ -611,7 +617,7 @@ mech::Result SimBoard::mechanics(std::size_t a) const {
   mech::Params p;
   p.axis.lead = machine_.lead_um * 1e-6;
   p.axis.microsteps = 1;   // full steps (full_steps() above)
-  const std::int32_t per_full = std::max(1, usteps_per_rev() / machine_.full_steps);
+  const std::int32_t per_full = std::max(1, usteps_per_rev(a) / machine_.full_steps);
   const std::vector<mech::Step> steps = full_steps(r.edges_ns, r.dirs, per_full);
   if (steps.empty()) return {};
   return mech::simulate(mech::Model(p), steps);

@@ -1,4 +1,5 @@
 #include "core/board/board.hpp"
+#include "core/board/driver_setup.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -26,11 +27,6 @@ constexpr std::int32_t clamp32(std::int64_t v) {
 }
 
 constexpr std::int32_t wrap_million(std::uint32_t v) { return static_cast<std::int32_t>(v % 1'000'000U); }
-
-// MRES encodes 256 >> MRES microsteps; storage only admits powers of two in [1, 256].
-constexpr std::int64_t mres_of(std::uint16_t microsteps) {
-  return 8 - std::countr_zero(static_cast<unsigned>(microsteps));
-}
 
 bool moving(const axis::State& s) { return s.phase != axis::Phase::Stop; }
 
@@ -131,11 +127,15 @@ BootResult Board::boot() {
       r.drivers_ok = false;
     }
   }
-  // Both are attempted even if one fails, so a single bad register does not leave the
-  // other at its reset value.
-  const bool currents = apply_currents();
-  const bool microsteps = apply_microsteps();
-  r.drivers_ok = r.drivers_ok && currents && microsteps;
+  // Both drivers are configured even if one fails, so a single bad chip does not leave the
+  // other at its reset value (TOFF = 0: power stage off; docs/tmc2130.md "Boot configuration").
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    const auto setup = configure_driver(drivers_[i], store_.current());
+    if (!setup) {
+      driver_fault(i, setup.error());
+      r.drivers_ok = false;
+    }
+  }
 
   if (hw_.sample != nullptr) hw_.sample(hw_.ctx, in_);
   const st::ParameterSet& p = store_.current();

@@ -2,6 +2,30 @@
 
 namespace ap::model::tmc2130 {
 
+namespace {
+// Datasheet 5.5, register 0x6C CHOPCONF. Stated here, not read from core/tmc2130's table.
+constexpr std::uint32_t kToffMask = 0x0000000FU;  // bits 3..0
+constexpr unsigned kMresShift = 24;               // bits 27..24
+constexpr std::uint32_t kMresMask = 0xFU;
+constexpr std::uint32_t kMresFullStep = 8;        // %1000; %1001..%1111 are not defined
+}  // namespace
+
+bool Device::power_stage_on() const {
+  return !drv_enn_high_ && (regs_[chip::index_of(chip::Reg::CHOPCONF)] & kToffMask) != 0;
+}
+
+std::int32_t Device::microsteps() const {
+  const std::uint32_t mres = (regs_[chip::index_of(chip::Reg::CHOPCONF)] >> kMresShift) & kMresMask;
+  // The datasheet defines MRES only up to %1000; a larger value is taken as full step, the
+  // coarsest the chip has (the firmware never writes one: its field range stops at 8).
+  return std::int32_t{256} >> (mres > kMresFullStep ? kMresFullStep : mres);
+}
+
+std::int64_t Device::step(std::int64_t edges, int dir) const {
+  if (!power_stage_on()) return 0;
+  return static_cast<std::int64_t>(dir) * edges * (256 / microsteps());
+}
+
 void Device::power_cycle() {
   for (std::size_t i = 0; i < chip::kRegisterCount; ++i) regs_[i] = chip::kRegisters[i].reset;
   latch_ = 0;

@@ -169,7 +169,7 @@ class SimBoard {
   void trace_tick();
   std::uint16_t expander_word() const;
   std::string probe(const std::string& subject);
-  std::int32_t usteps_per_rev() const;
+  std::int32_t usteps_per_rev(std::size_t a) const;
   void seed_fram();
   [[nodiscard]] model::mechanics::Result mechanics(std::size_t a) const;
 

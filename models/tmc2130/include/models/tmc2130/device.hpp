@@ -1,7 +1,11 @@
 #pragma once
 // A TMC2130 as seen from its SPI pins, for tests and the simulated board. It follows the
 // datasheet, not the driver: pipelined replies, write-only registers that read as 0,
-// GSTAT cleared by a read, the SPI_STATUS byte, unimplemented bits dropped, power-on reset.
+// GSTAT cleared by a read, the SPI_STATUS byte, unimplemented bits dropped, power-on reset,
+// and the power stage: a STEP edge turns the motor only when the chopper is on (CHOPCONF.TOFF
+// != 0) and DRV_ENN is low, by the microstep the chip's own CHOPCONF.MRES selects. The bit
+// positions the power stage reads are written here from the datasheet, not taken from the
+// firmware's register table, so a firmware that misreads them cannot agree with the model.
 // Test hooks (fault injection, access log) are explicit and off by default.
 #include <array>
 #include <cstdint>
@@ -29,6 +33,23 @@ class Device {
   // What the chip really holds, write-only registers included (a test oracle: the driver
   // cannot see this).
   std::uint32_t chip_register(chip::Reg reg) const { return regs_[chip::index_of(reg)]; }
+
+  // The DRV_ENN pin (datasheet 2.2, pin table: "high: power stage switched off, all motor
+  // outputs floating"). The board drives it from the MCU's enable output.
+  void set_drv_enn(bool high) { drv_enn_high_ = high; }
+
+  // Datasheet 5.5, CHOPCONF bits 3..0 TOFF: "%0000: driver disable, all bridges off"; and
+  // DRV_ENN above. Off, the motor is not driven: STEP edges are ignored.
+  bool power_stage_on() const;
+
+  // Microsteps per full step for one STEP edge: datasheet 5.5, CHOPCONF bits 27..24 MRES,
+  // %0000 = 256 (native) ... %1000 = 1 (full step); 256 >> MRES. The reset value 0 gives 256.
+  std::int32_t microsteps() const;
+
+  // `edges` STEP rising edges in the direction `dir` (+1/-1): how far the rotor turns, in
+  // 1/256 of a full step (datasheet, STEP/DIR interface: one microstep per active STEP edge,
+  // with dedge = 0 the rising one; MRES = 0 is 256 microsteps per full step). Zero while the power stage is off.
+  std::int64_t step(std::int64_t edges, int dir) const;
 
   // Inputs the chip would measure: read-only registers (DRV_STATUS, TSTEP, ...) and GSTAT
   // flags such as drv_err.
@@ -62,6 +83,7 @@ class Device {
 
   std::array<std::uint32_t, chip::kRegisterCount> regs_{};
   std::uint32_t latch_ = 0;
+  bool drv_enn_high_ = false;
   chip::Reg corrupt_reg_ = chip::Reg::GCONF;
   std::uint32_t corrupt_flip_ = 0;
   unsigned corrupt_count_ = 0;
