@@ -88,23 +88,20 @@ std::optional<storage::ParamId> param_by_name(std::string_view name) {
   return std::nullopt;
 }
 
-std::uint8_t led_code(const board::Board& b, Ble ble) {
-  // Tab. 7-4 priorities (docs/board.md G14): block cause red > fault > BLE blue > stand-by green.
+std::uint8_t led_code(const board::Board& b) {
+  // The core's Tab. 7-4 pattern (core/board/led.hpp) in the telemetry's colour and blink bits.
   constexpr std::uint8_t kR = 1, kG = 2, kB = 4, kSlow = 1 << 4, kFast = 2 << 4;
-  switch (b.block()) {
-    case board::Block::Battery: return kR | kFast;
-    case board::Block::Charger: return kR;
-    case board::Block::Usb: return kR | kSlow;
-    case board::Block::None: break;
+  const board::Led l = b.led();
+  std::uint8_t code = 0;
+  switch (l.colour) {
+    case board::LedColour::Off: return 0;
+    case board::LedColour::Red: code = kR; break;
+    case board::LedColour::Green: code = kG; break;
+    case board::LedColour::Blue: code = kB; break;
   }
-  if (b.fault_code() != 0) return kR | kG | kSlow;
-  switch (ble) {
-    case Ble::Session: return kB;
-    case Ble::Connected: return kB | kSlow;
-    case Ble::Standby:
-    case Ble::Shutdown: break;
-  }
-  return b.sleeping() ? static_cast<std::uint8_t>(kG | kSlow) : kG;
+  if (l.blink == board::LedBlink::Slow) code |= kSlow;
+  if (l.blink == board::LedBlink::Fast) code |= kFast;
+  return code;
 }
 
 std::string led_word(std::uint8_t code) {
@@ -169,6 +166,7 @@ void SimBoard::boot() {
   hw.sample = &SimBoard::sample;
   hw.motor = &SimBoard::motor;
   hw.uart_tx = &SimBoard::uart_tx;
+  hw.led = &SimBoard::led_out;
   hw.frame_taken = &SimBoard::frame_taken;
   checker_.reset();   // it refers to the board it was made for
   board_ = std::make_unique<board::Board>(hw);
@@ -230,9 +228,9 @@ void SimBoard::fill_inputs(board::Inputs& in) {
   const bool running = out_[0].steps != 0 || out_[1].steps != 0;
   in.charge_ma = charger_ || usb_ ? 500 : (running ? -650 : -120);
   switch (ble_) {   // Tab. 7-2: (STATUS1_IND, STATUS2_IND)
-    case Ble::Shutdown: in.ble_status1 = false; in.ble_status2 = false; break;
+    case Ble::Shutdown: in.ble_status1 = true; in.ble_status2 = true; break;
     case Ble::Standby: in.ble_status1 = true; in.ble_status2 = false; break;
-    case Ble::Connected: in.ble_status1 = true; in.ble_status2 = true; break;
+    case Ble::Connected: in.ble_status1 = false; in.ble_status2 = false; break;
     case Ble::Session: in.ble_status1 = false; in.ble_status2 = true; break;
   }
 }
@@ -261,7 +259,7 @@ void SimBoard::motor(void* ctx, board::Axis ax, const board::MotorOutput& o) {
   if (s->on_qemu()) {
     // The image's outputs move the carriage; the mirror's must be the same.
     const ImageMotor& m = s->image_motor_[a];
-    const bool enable = (s->image_olat_b_ & (a == 0 ? 0x40U : 0x80U)) == 0;
+    const bool enable = s->image_pin_low(a == 0 ? 0x40U : 0x80U);
     const auto t = axis::step_timer(o.step_hz);
     const bool running = o.enable && o.steps > 0 && t.has_value();
     const bool same = enable == o.enable && m.dir == (o.dir > 0) && m.armed &&
@@ -330,6 +328,21 @@ void SimBoard::frame_taken(void* ctx, const frame::CommandFrame& f) {
   }
   ++s->frames_taken_;
   s->taken_digest_ = fnv1a(s->taken_digest_, bytes);
+}
+
+void SimBoard::led_out(void* ctx, board::LedColour lit) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  if (!s->on_qemu()) return;
+  // The image drives the LED on OLATB bits 1..3 (R, G, B); it must light what the host core
+  // lights in the same tick.
+  const board::LedColour image = s->image_pin_high(0x02U)   ? board::LedColour::Red
+                                 : s->image_pin_high(0x04U) ? board::LedColour::Green
+                                 : s->image_pin_high(0x08U) ? board::LedColour::Blue
+                                                            : board::LedColour::Off;
+  if (image != lit) {
+    static constexpr const char* kName[] = {"off", "red", "green", "blue"};
+    s->qemu_fail(std::string("LED: image ") + kName[static_cast<int>(image)] + ", host core " + kName[static_cast<int>(lit)]);
+  }
 }
 
 void SimBoard::uart_tx(void* ctx, std::span<const std::uint8_t> bytes) {
@@ -610,7 +623,7 @@ std::vector<std::uint8_t> SimBoard::take_tx(std::size_t max_bytes) {
   return out;
 }
 
-std::uint8_t SimBoard::led() const { return board_ ? led_code(*board_, ble_) : 0; }
+std::uint8_t SimBoard::led() const { return board_ ? led_code(*board_) : 0; }
 
 mech::Result SimBoard::mechanics(std::size_t a) const {
   const AxisRec& r = rec_[a];

@@ -59,6 +59,7 @@ void SimBoard::qemu_start() {
   image_tx_pos_ = 0;
   image_motor_ = {};
   image_olat_b_ = 0xC0;
+  image_iodir_b_ = 0xFF;
   link_delivered_ = 0;
   image_ticks_ = 0;
   image_ready_ = false;
@@ -165,6 +166,8 @@ void SimBoard::qemu_answer(const QemuImage::Message& m) {
             miso[3] = static_cast<std::uint8_t>(w >> 8);
           } else if (mosi.size() == 3 && mosi[0] == 0x40 && mosi[1] == 0x15) {
             image_olat_b_ = mosi[2];
+          } else if (mosi.size() == 3 && mosi[0] == 0x40 && mosi[1] == 0x01) {
+            image_iodir_b_ = mosi[2];
           } else {
             qemu_fail("an expander transaction the board does not make");
           }

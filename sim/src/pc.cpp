@@ -616,7 +616,8 @@ class Pc {
       }
       if (f == "led") return Val(led_word(b.tel.led));
       if (f == "ble") {
-        static const char* kBle[] = {"shutdown", "standby", "session", "connected"};   // by (S1 | S2 << 1)
+        // Tab. 7-2 by (S1 | S2 << 1): (0,0) connected, (1,0) standby, (0,1) session, (1,1) shutdown.
+        static const char* kBle[] = {"connected", "standby", "session", "shutdown"};
         return Val(std::string(kBle[b.tel.ble_status & 3U]));
       }
       if (f == "charger") return on(b.tel.charger);

@@ -188,6 +188,10 @@ void Board::tick() {
   // The refusals are final once the axes have stepped (the axis core refuses too).
   if (taken_this_cycle_) last_outcome_ = Outcome{block_, refused_};
   send_echoes();
+  if (hw_.led != nullptr) {
+    const Led l = led();
+    hw_.led(hw_.ctx, led_lit(l, ticks_) ? l.colour : LedColour::Off);
+  }
 }
 
 void Board::begin_of_cycle() {
@@ -209,7 +213,7 @@ void Board::begin_of_cycle() {
       event_[i] = AxisEvent::None;
     }
   }
-  session_open_ = !in_.ble_status1 && in_.ble_status2;
+  session_open_ = ble_state(in_.ble_status1, in_.ble_status2) == BleState::Session;
 }
 
 void Board::receive() {

@@ -52,17 +52,24 @@ void sample(void*, board::Inputs& in) {
   in.charge_ma = charge_ma(adc_read(AdcChannel::ChargeCurrent));
 }
 
-void motor(void*, board::Axis ax, const board::MotorOutput& o) {
-  const auto a = static_cast<std::size_t>(ax);
-  const std::uint8_t enn = a == 0 ? kOlatEnnX : kOlatEnnY;
-  const auto want = static_cast<std::uint8_t>(o.enable ? (olat_b & ~enn) : (olat_b | enn));
+void expander_write(std::uint8_t reg, std::uint8_t value) {
+  const std::uint8_t mosi[3] = {kExpanderWrite, reg, value};
+  std::uint8_t miso[3] = {};
+  (void)spi_transfer(SpiDevice::Expander, mosi, miso, 3);
+}
+
+void olat_write(std::uint8_t want) {
   if (want != olat_b || !olat_written) {
     olat_b = want;
     olat_written = true;
-    const std::uint8_t mosi[3] = {kExpanderWrite, kExpanderOlatB, olat_b};
-    std::uint8_t miso[3] = {};
-    (void)spi_transfer(SpiDevice::Expander, mosi, miso, 3);
+    expander_write(kExpanderOlatB, olat_b);
   }
+}
+
+void motor(void*, board::Axis ax, const board::MotorOutput& o) {
+  const auto a = static_cast<std::size_t>(ax);
+  const std::uint8_t enn = a == 0 ? kOlatEnnX : kOlatEnnY;
+  olat_write(static_cast<std::uint8_t>(o.enable ? (olat_b & ~enn) : (olat_b | enn)));
   pin_write(a == 0 ? Pin::DirX : Pin::DirY, o.dir > 0);
   const auto t = axis::step_timer(o.step_hz);
   if (o.enable && o.steps > 0 && t) {
@@ -72,12 +79,30 @@ void motor(void*, board::Axis ax, const board::MotorOutput& o) {
   }
 }
 
+void led(void*, board::LedColour lit) {
+  constexpr std::uint8_t kLed = kOlatLedR | kOlatLedG | kOlatLedB;
+  std::uint8_t bit = 0;
+  switch (lit) {
+    case board::LedColour::Off: break;
+    case board::LedColour::Red: bit = kOlatLedR; break;
+    case board::LedColour::Green: bit = kOlatLedG; break;
+    case board::LedColour::Blue: bit = kOlatLedB; break;
+  }
+  olat_write(static_cast<std::uint8_t>((olat_b & ~kLed) | bit));
+}
+
 void uart_tx(void*, std::span<const std::uint8_t> bytes) {
   link_send(bytes.data(), bytes.size());
   tx_count = static_cast<std::uint16_t>(tx_count + bytes.size());
 }
 
 }  // namespace
+
+void port_init() {
+  // The latch first, so the pins come up as "driver off, LED dark" when they become outputs.
+  olat_write(olat_b);
+  expander_write(kExpanderIodirB, kIodirB);
+}
 
 board::Hardware board_hardware() {
   board::Hardware hw;
@@ -87,6 +112,7 @@ board::Hardware board_hardware() {
   hw.sample = &sample;
   hw.motor = &motor;
   hw.uart_tx = &uart_tx;
+  hw.led = &led;
   return hw;
 }
 

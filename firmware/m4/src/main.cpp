@@ -21,6 +21,7 @@ namespace ap::fw {
 
 void run() {
   periph_init();
+  port_init();
   board::Board* b = &the_board;
   (void)b->boot();
   std::uint32_t ticks = 0;

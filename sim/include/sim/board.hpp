@@ -76,7 +76,7 @@ struct QemuStats {
 enum class Ble : std::uint8_t { Shutdown, Standby, Connected, Session };
 
 // LED colours (bits 0..2 = R, G, B) and blink (bits 4..5: 0 steady, 1 slow, 2 fast), Tab. 7-4.
-std::uint8_t led_code(const board::Board& b, Ble ble);
+std::uint8_t led_code(const board::Board& b);
 std::string led_word(std::uint8_t code);   // "red_fast", "blue", ...
 
 // FNV-1a 64 (offset basis, prime): a digest of a byte stream, extended byte by byte.
@@ -143,6 +143,7 @@ class SimBoard {
   static void sample(void* ctx, board::Inputs& in);
   static void motor(void* ctx, board::Axis a, const board::MotorOutput& o);
   static void uart_tx(void* ctx, std::span<const std::uint8_t> bytes);
+  static void led_out(void* ctx, board::LedColour lit);
   static void frame_taken(void* ctx, const frame::CommandFrame& f);
   static bool tmc_spi(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
   static bool tmc_spi_y(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
@@ -208,6 +209,12 @@ class SimBoard {
   std::size_t qemu_log_pos_ = 0;
   std::array<ImageMotor, board::kAxes> image_motor_{};
   std::uint8_t image_olat_b_ = 0xC0;
+  // The image's IODIRB: the MCP23S17 resets every pin to an input (0xFF); a pin left an input
+  // drives nothing, and the board's pull-up holds DRV_ENN high (driver off; docs/qemu.md).
+  std::uint8_t image_iodir_b_ = 0xFF;
+  // The image's output pin `bit` of OLATB as it reaches the board: driven only as an output.
+  bool image_pin_low(std::uint8_t bit) const { return (image_iodir_b_ & bit) == 0 && (image_olat_b_ & bit) == 0; }
+  bool image_pin_high(std::uint8_t bit) const { return (image_iodir_b_ & bit) == 0 && (image_olat_b_ & bit) != 0; }
   std::vector<std::uint8_t> image_tx_;      // the image's TX bytes of this tick, not yet matched
   std::size_t image_tx_pos_ = 0;
   std::uint32_t link_delivered_ = 0;        // link bytes sent to the image since its power-up

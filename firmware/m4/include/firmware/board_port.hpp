@@ -45,7 +45,17 @@ inline constexpr std::uint8_t kExpanderOlatB = 0x15;
 inline constexpr std::uint16_t kExpXMin = 1U << 0, kExpXMax = 1U << 1, kExpYMin = 1U << 2, kExpYMax = 1U << 3;
 inline constexpr std::uint16_t kExpButton = 1U << 4, kExpCharger = 1U << 5, kExpUsb = 1U << 6;
 inline constexpr std::uint16_t kExpBle1 = 1U << 7, kExpBle2 = 1U << 8;
-// Output bits of OLATB: the TMC2130 DRV_ENN pins (active low: 1 = driver off).
+// Output bits of OLATB: the TMC2130 DRV_ENN pins (active low: 1 = driver off) and the RGB
+// LED (1 = lit).
 inline constexpr std::uint8_t kOlatEnnX = 1U << 6, kOlatEnnY = 1U << 7;
+inline constexpr std::uint8_t kOlatLedR = 1U << 1, kOlatLedG = 1U << 2, kOlatLedB = 1U << 3;
+// IODIRB: the MCP23S17 resets every pin to an input (IODIR = 0xFF, datasheet 1.6 / 3.5.1), so
+// OLATB drives nothing until these bits are cleared; GPIOB0 (BLE STATUS2) stays an input.
+inline constexpr std::uint8_t kExpanderIodirB = 0x01;
+inline constexpr std::uint8_t kIodirB = static_cast<std::uint8_t>(
+    0xFFU & ~static_cast<unsigned>(kOlatEnnX | kOlatEnnY | kOlatLedR | kOlatLedG | kOlatLedB));
+
+// Makes the expander's output pins outputs (drivers off, LED dark). Before Board::boot().
+void port_init();
 
 }  // namespace ap::fw

@@ -27,6 +27,7 @@
 #include "core/icm20789/driver.hpp"
 #include "core/icm20789/rotation.hpp"
 #include "core/path/executor.hpp"
+#include "core/board/led.hpp"
 #include "core/storage/store.hpp"
 #include "core/tmc2130/driver.hpp"
 #include "core/tmp117/driver.hpp"
@@ -74,6 +75,9 @@ struct Hardware {
   void (*sample)(void* ctx, Inputs& in) = nullptr;
   void (*motor)(void* ctx, Axis axis, const MotorOutput& out) = nullptr;
   void (*uart_tx)(void* ctx, std::span<const std::uint8_t> bytes) = nullptr;
+  // The RGB LED at the end of every tick: the colour lit now (Off in a blink's dark half),
+  // from Tab. 7-4 (core/board/led.hpp).
+  void (*led)(void* ctx, LedColour lit) = nullptr;
   // Each frame that takes a new seq (docs/protocol.md "Delivery": executed, or answered as
   // blocked), once, in order: a trace point for loggers and for the harness's exactly-once check.
   void (*frame_taken)(void* ctx, const frame::CommandFrame& f) = nullptr;
@@ -185,6 +189,8 @@ class Board {
   // Observers (tests, fuzz oracles, the simulated board's trace).
   MainState main_state() const { return main_state_; }
   Block block() const { return block_; }
+  // Tab. 7-4 from this tick's inputs (core/board/led.hpp).
+  Led led() const { return led_pattern(battery_low_, in_.charger, ble_state(in_.ble_status1, in_.ble_status2)); }
   bool sleeping() const { return sleeping_; }
   bool session_open() const { return session_open_; }
   bool link_alive() const { return axis::link_alive(watchdog_); }
