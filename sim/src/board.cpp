@@ -167,6 +167,7 @@ void SimBoard::boot() {
   hw.motor = &SimBoard::motor;
   hw.uart_tx = &SimBoard::uart_tx;
   hw.led = &SimBoard::led_out;
+  hw.encoder_zero = &SimBoard::encoder_zero;
   hw.frame_taken = &SimBoard::frame_taken;
   checker_.reset();   // it refers to the board it was made for
   board_ = std::make_unique<board::Board>(hw);
@@ -203,6 +204,26 @@ void SimBoard::boot() {
   monitor_.booted(*board_);
 }
 
+std::int64_t SimBoard::encoder_raw_counts(std::size_t a) const {
+  const double revs = carriage_um_[a] / machine_.lead_um;
+  return static_cast<std::int64_t>(std::floor(revs * axis::kEncoderCounts + 1e-9));
+}
+
+void SimBoard::encoder_zero(void* ctx, board::Axis ax, std::int64_t counts) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  const auto a = static_cast<std::size_t>(ax);
+  if (s->on_qemu()) {
+    // The image programs the encoder over SPI in the same tick; it must ask for the same.
+    const std::optional<std::int64_t> img = s->image_encoder_zero_[a];
+    s->image_encoder_zero_[a].reset();
+    if (!img || *img != counts) {
+      s->qemu_fail(std::string("encoder ") + (a == 0 ? "X" : "Y") + ": image programmed " +
+                   (img ? std::to_string(*img) : std::string("nothing")) + ", host core " + std::to_string(counts));
+    }
+  }
+  s->encoder_offset_[a] = s->encoder_raw_counts(a) - counts;
+}
+
 void SimBoard::fill_inputs(board::Inputs& in) {
   for (std::size_t a = 0; a < board::kAxes; ++a) {
     const double c = carriage_um_[a];
@@ -213,12 +234,11 @@ void SimBoard::fill_inputs(board::Inputs& in) {
     };
     in.endstop_min[a] = level(endstop_force_[a][0], c <= endstop_min_um_[a]);
     in.endstop_max[a] = level(endstop_force_[a][1], c >= endstop_max_um_[a]);
-    // RLS Orbis: multi-turn count and a 14-bit angle of the screw (one turn = one lead).
-    const double revs = c / machine_.lead_um;
-    const double turns = std::floor(revs);
-    const double frac = revs - turns;
-    auto counts = static_cast<std::int64_t>(std::floor(frac * axis::kEncoderCounts + 1e-9));
-    counts = std::clamp<std::int64_t>(counts, 0, axis::kEncoderCounts - 1);
+    // RLS Orbis: multi-turn count and a 14-bit angle of the screw (one turn = one lead),
+    // measured from its programmed zero.
+    const std::int64_t total = encoder_raw_counts(a) - encoder_offset_[a];
+    const std::int64_t turns = total >= 0 ? total / axis::kEncoderCounts : -((-total + axis::kEncoderCounts - 1) / axis::kEncoderCounts);
+    const std::int64_t counts = total - turns * axis::kEncoderCounts;
     in.encoder[a] = axis::EncoderReading{static_cast<std::int32_t>(turns), static_cast<std::uint16_t>(counts), 1};
   }
   in.usb = usb_;

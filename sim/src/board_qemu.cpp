@@ -1,6 +1,7 @@
 // The simulated board's QEMU target (sim/board.hpp, docs/qemu.md "Co-simulation"): the image
 // runs the board, the device models answer its transactions, and the host core mirrors it.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +13,13 @@
 
 namespace ap::sim {
 namespace {
+
+// RLS Orbis programming as the encoder sees it: the unlock bytes, then the command that sets
+// the reading of where the shaft stands now ('Z', the position/multi-turn preset) with a 32-bit
+// count, MSB first, in one chip-select frame (docs/motion.md "Homing and the encoder zero").
+constexpr std::array<std::uint8_t, 4> kOrbisUnlock{0xCD, 0xEF, 0x89, 0xAB};
+constexpr std::uint8_t kOrbisSetPosition = 0x5A;
+constexpr std::size_t kOrbisProgramLength = 9;
 
 using cosim::Kind;
 using Clock = std::chrono::steady_clock;
@@ -58,6 +66,7 @@ void SimBoard::qemu_start() {
   image_tx_.clear();
   image_tx_pos_ = 0;
   image_motor_ = {};
+  image_encoder_zero_ = {};
   image_olat_b_ = 0xC0;
   image_iodir_b_ = 0xFF;
   link_delivered_ = 0;
@@ -151,6 +160,16 @@ void SimBoard::qemu_answer(const QemuImage::Message& m) {
           break;
         case cosim::SpiDevice::EncoderX:
         case cosim::SpiDevice::EncoderY: {
+          if (mosi.size() == kOrbisProgramLength && std::equal(kOrbisUnlock.begin(), kOrbisUnlock.end(), mosi.begin()) &&
+              mosi[4] == kOrbisSetPosition) {
+            // The zero programming of a completed homing (docs/motion.md); the host core's
+            // encoder_zero applies it after comparing.
+            std::int64_t c = 0;
+            for (std::size_t k = 5; k < 9; ++k) c = c << 8 | mosi[k];
+            image_encoder_zero_[dev == 3 ? 0 : 1] = static_cast<std::int32_t>(static_cast<std::uint32_t>(c));
+            miso.assign(mosi.size(), 0);
+            break;
+          }
           need(mosi.size() == 4, "encoder");
           const axis::EncoderReading& e = now.encoder[dev == 3 ? 0 : 1];
           const auto turns = static_cast<std::uint16_t>(e.turns);

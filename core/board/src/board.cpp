@@ -370,6 +370,14 @@ void Board::step_axes() {
       // completed reference as the G edge above: REACHED (docs/echo-model.md).
       event_[i] = AxisEvent::Reached;
     }
+    // A completed reference makes where the carriage stands the axis's home position for good:
+    // the absolute encoder is programmed so that it reads that position from now on, across
+    // power cycles (thesis §7.7.2: the encoder's programmed zero is the absolute zero;
+    // docs/motion.md "Homing and the encoder zero").
+    const bool homing = before.mode == axis::Mode::Home || in.cmd.kind == axis::CmdKind::Home;
+    if (homing && r.state.mode != axis::Mode::Home && event_[i] == AxisEvent::Reached && hw_.encoder_zero != nullptr) {
+      hw_.encoder_zero(hw_.ctx, static_cast<Axis>(i), encoder_counts_at(r.state.pos));
+    }
     MotorOutput& m = motor_[i];
     m.dir = r.out.dir;
     m.steps = r.out.steps;
@@ -379,6 +387,17 @@ void Board::step_axes() {
     m.enable = !(sleeping_ && !moving(r.state) && r.out.steps == 0);
     if (hw_.motor != nullptr) hw_.motor(hw_.ctx, static_cast<Axis>(i), m);
   }
+}
+
+std::int64_t Board::encoder_counts_at(std::int32_t pos) const {
+  // The encoder count that eq. 7-2 turns back into `pos`: the smallest c with
+  // floor(c * rev / 16384) >= pos. With rev <= 16384 microsteps per turn every position has
+  // one; above that a position between two encoder counts comes back as the next one up
+  // (at most rev / 16384 microsteps off).
+  const std::int64_t rev = static_cast<std::int64_t>(axis::usteps_per_rev(derived_.mech));
+  const std::int64_t n = static_cast<std::int64_t>(pos) * axis::kEncoderCounts;
+  // Ceiling division for either sign; |pos| <= kPosMax < 2^31, so |n| < 2^45.
+  return n >= 0 ? (n + rev - 1) / rev : -((-n) / rev);
 }
 
 void Board::check_drivers() {

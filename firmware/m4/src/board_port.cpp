@@ -91,6 +91,15 @@ void led(void*, board::LedColour lit) {
   olat_write(static_cast<std::uint8_t>((olat_b & ~kLed) | bit));
 }
 
+void encoder_zero(void*, board::Axis ax, std::int64_t counts) {
+  const auto c = static_cast<std::uint32_t>(static_cast<std::int32_t>(counts));
+  const std::uint8_t mosi[9] = {kOrbisUnlock[0], kOrbisUnlock[1], kOrbisUnlock[2], kOrbisUnlock[3], kOrbisSetPosition,
+                                static_cast<std::uint8_t>(c >> 24), static_cast<std::uint8_t>(c >> 16),
+                                static_cast<std::uint8_t>(c >> 8), static_cast<std::uint8_t>(c)};
+  std::uint8_t miso[9] = {};
+  (void)spi_transfer(ax == board::Axis::X ? SpiDevice::EncoderX : SpiDevice::EncoderY, mosi, miso, sizeof mosi);
+}
+
 void uart_tx(void*, std::span<const std::uint8_t> bytes) {
   link_send(bytes.data(), bytes.size());
   tx_count = static_cast<std::uint16_t>(tx_count + bytes.size());
@@ -113,6 +122,7 @@ board::Hardware board_hardware() {
   hw.motor = &motor;
   hw.uart_tx = &uart_tx;
   hw.led = &led;
+  hw.encoder_zero = &encoder_zero;
   return hw;
 }
 

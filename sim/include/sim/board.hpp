@@ -144,6 +144,7 @@ class SimBoard {
   static void motor(void* ctx, board::Axis a, const board::MotorOutput& o);
   static void uart_tx(void* ctx, std::span<const std::uint8_t> bytes);
   static void led_out(void* ctx, board::LedColour lit);
+  static void encoder_zero(void* ctx, board::Axis a, std::int64_t counts);
   static void frame_taken(void* ctx, const frame::CommandFrame& f);
   static bool tmc_spi(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
   static bool tmc_spi_y(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
@@ -249,6 +250,15 @@ class SimBoard {
   std::array<std::int32_t, board::kAxes> endstop_min_um_{};
   std::array<std::int32_t, board::kAxes> endstop_max_um_{};
   std::array<double, board::kAxes> carriage_um_{};   // the physical carriage
+  // The RLS Orbis's programmed offset, in counts (16384 a turn): what it subtracts from the
+  // angle of the screw it measures. Kept in the encoder's own memory, so it survives a reboot
+  // (thesis §7.7.2); 0 until the board programs one (the zero it left the factory with is
+  // the screw at carriage 0).
+  std::array<std::int64_t, board::kAxes> encoder_offset_{};
+  // Counts of the screw's angle from carriage 0, before the offset.
+  std::int64_t encoder_raw_counts(std::size_t a) const;
+  // The image's encoder programming requests of this tick, per axis (QEMU mirror).
+  std::array<std::optional<std::int64_t>, board::kAxes> image_encoder_zero_{};
   std::uint16_t expander_last_ = 0xFFFF;
 
   // Outputs and monitors.

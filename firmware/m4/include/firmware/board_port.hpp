@@ -55,6 +55,12 @@ inline constexpr std::uint8_t kExpanderIodirB = 0x01;
 inline constexpr std::uint8_t kIodirB = static_cast<std::uint8_t>(
     0xFFU & ~static_cast<unsigned>(kOlatEnnX | kOlatEnnY | kOlatLedR | kOlatLedG | kOlatLedB));
 
+// RLS Orbis programming: unlock bytes, then 'Z' (set the reading of where the shaft stands
+// now, kept in the encoder's memory) and the 32-bit count, MSB first (docs/motion.md "Homing
+// and the encoder zero").
+inline constexpr std::uint8_t kOrbisUnlock[4] = {0xCD, 0xEF, 0x89, 0xAB};
+inline constexpr std::uint8_t kOrbisSetPosition = 0x5A;
+
 // Makes the expander's output pins outputs (drivers off, LED dark). Before Board::boot().
 void port_init();
 

@@ -78,6 +78,10 @@ struct Hardware {
   // The RGB LED at the end of every tick: the colour lit now (Off in a blink's dark half),
   // from Tab. 7-4 (core/board/led.hpp).
   void (*led)(void* ctx, LedColour lit) = nullptr;
+  // Programs an axis's absolute encoder (RLS Orbis: position offset and multi-turn counter, in
+  // its own memory) so that where it stands now reads `counts` = turns * 16384 + angle from
+  // then on. Called once per completed homing (docs/motion.md "Homing and the encoder zero").
+  void (*encoder_zero)(void* ctx, Axis axis, std::int64_t counts) = nullptr;
   // Each frame that takes a new seq (docs/protocol.md "Delivery": executed, or answered as
   // blocked), once, in order: a trace point for loggers and for the harness's exactly-once check.
   void (*frame_taken)(void* ctx, const frame::CommandFrame& f) = nullptr;
@@ -260,6 +264,7 @@ class Board {
   bool apply_currents();
   bool apply_microsteps();
   void driver_fault(std::size_t i, tmc2130::Error e);
+  std::int64_t encoder_counts_at(std::int32_t pos) const;
   frame::HandlerStatus refuse(Axis a, codec::CommandId id);
   frame::AxisEcho echo_of(std::size_t i, Block block, std::uint8_t refused) const;
   std::int32_t subscriber(frame::SubscriberSlot slot);
