@@ -142,8 +142,25 @@ TEST(SimOutputs, VcdAndSvgOfARunAreWellFormed) {
   EXPECT_EQ(header.rfind(ap::sim::kTraceHeader, 0), 0U);
   EXPECT_NE(header.find("lost_step_risk"), std::string::npos);
   std::size_t rows = 0;
-  for (std::string line; std::getline(trace, line);) ++rows;
+  std::string x_edges;  // the Tab. 7-3 letters X took, in order, each run once
+  for (std::string line; std::getline(trace, line);) {
+    ++rows;
+    std::vector<std::string> f;
+    std::stringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    ASSERT_GE(f.size(), 14U) << line;
+    ASSERT_EQ(f[12].size(), 1U) << line;
+    EXPECT_NE(f[12], "-") << "the board trace shows the edge letter: " << line;
+    if (f[1] == "X" && (x_edges.empty() || x_edges.back() != f[12][0])) x_edges += f[12][0];
+    EXPECT_EQ(f[13], "0") << "no command of this run is refused: " << line;
+  }
   EXPECT_EQ(rows, 2U * static_cast<std::size_t>(s.duration_us / 1000));
+  // A goto from standstill (docs/motion.md §4): idle (I), A out of STOP, J accelerating, then
+  // braking onto the target and back to idle; the run starts and ends idle.
+  ASSERT_FALSE(x_edges.empty());
+  EXPECT_EQ(x_edges.front(), 'I') << x_edges;
+  EXPECT_EQ(x_edges.back(), 'I') << x_edges;
+  EXPECT_NE(x_edges.find("IAJ"), std::string::npos) << x_edges;
 }
 
 TEST(SimVerdict, AWrongExpectationFailsWithItsLine) {

@@ -553,10 +553,11 @@ void SimBoard::trace_tick() {
     if (!opt_.out_dir.empty()) {
       char buf[512];
       std::snprintf(buf, sizeof buf,
-                    "%lld,%c,%s,%s,%d,%d,%d,%d,%u,%u,%d,%d,-,0,%d,%d,%d,%u,%d,%d,%s,%.3f,%d,%u,%d,%d,%lld,0x%03x",
+                    "%lld,%c,%s,%s,%d,%d,%d,%d,%u,%u,%d,%d,%c,%d,%d,%d,%d,%u,%d,%d,%s,%.3f,%d,%u,%d,%d,%lld,0x%03x",
                     static_cast<long long>(t_us), a == 0 ? 'X' : 'Y', axis::phase_name(s.phase), axis::mode_name(s.mode),
                     s.pos, s.target, s.v / axis::kSpeedScale, o.dir, in.endstop_min[a], in.endstop_max[a],
                     b.block() != board::Block::None ? 1 : 0, o.enable ? o.steps : 0,
+                    axis::edge_letter(b.axis_edge(ax)), static_cast<int>(b.axis_error(ax)),
                     static_cast<int>(b.main_state()), static_cast<int>(b.block()), b.session_open() ? 1 : 0,
                     in.battery_mv, in.charger ? 1 : 0, in.usb ? 1 : 0, led_word(led_now).c_str(), carriage_um_[a],
                     in.encoder[a].turns, in.encoder[a].counts, o.enable ? 1 : 0, b.link_alive() ? 1 : 0,

@@ -378,6 +378,8 @@ void Board::step_axes() {
     if (homing && r.state.mode != axis::Mode::Home && event_[i] == AxisEvent::Reached && hw_.encoder_zero != nullptr) {
       hw_.encoder_zero(hw_.ctx, static_cast<Axis>(i), encoder_counts_at(r.state.pos));
     }
+    edge_[i] = r.out.edge;
+    error_[i] = r.out.error;
     MotorOutput& m = motor_[i];
     m.dir = r.out.dir;
     m.steps = r.out.steps;

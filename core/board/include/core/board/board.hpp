@@ -203,6 +203,10 @@ class Board {
   const axis::Mechanics& mechanics() const { return derived_.mech; }
   AxisEvent axis_event(Axis a) const { return event_[idx(a)]; }
   const MotorOutput& motor_output(Axis a) const { return motor_[idx(a)]; }
+  // The axis core's output of this tick beyond the motor pins: the Tab. 7-3 edge it took and
+  // its typed error (None when the tick's command, if any, was taken), for traces.
+  axis::Edge axis_edge(Axis a) const { return edge_[idx(a)]; }
+  axis::Error axis_error(Axis a) const { return error_[idx(a)]; }
   const Inputs& inputs() const { return in_; }
   const storage::ParameterStore& store() const { return store_; }
   // The last good temperature (kNoTemperatureMc before the first), the integrated platform
@@ -336,6 +340,8 @@ class Board {
   std::array<std::uint8_t, kAxes> refused_{kNoRefusal, kNoRefusal};
   std::array<AxisEvent, kAxes> event_{};
   std::array<MotorOutput, kAxes> motor_{};
+  std::array<axis::Edge, kAxes> edge_{axis::Edge::I, axis::Edge::I};
+  std::array<axis::Error, kAxes> error_{};
 
   path::Executor path_{};
   std::array<codec::CommandId, kAxes> path_id_{codec::CommandId::Nop, codec::CommandId::Nop};  // Nop: no path part
