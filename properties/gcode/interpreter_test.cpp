@@ -130,6 +130,22 @@ TEST(GcodeInterp, InitialStateAndModalMotion) {
   EXPECT_EQ(r.in.state().pos, (P{90'600, 0, 0}));
 }
 
+// Seed 003 Tab. 2 (003_*.txt): "M206 X40 Y40" sets a home offset at 40, 40; it is not a
+// move. An M code's words are its parameters (docs/gcode.md "M lines"), whatever the modal
+// motion; a G motion word on the same line still takes the axis words.
+TEST(GcodeInterp, AnMLineNeverMoves) {
+  Script r;
+  r.ok("G1 F600");
+  const Move m = r.ok("N02 M206 X40 Y40");
+  EXPECT_EQ(m.kind, MoveKind::None);
+  EXPECT_EQ(r.in.state().pos, (P{0, 0, 0}));
+  EXPECT_EQ(r.ok("M106 S127").kind, MoveKind::None);
+  EXPECT_EQ(r.ok("M301 P22.2 I1.08 D114").kind, MoveKind::None);
+  EXPECT_EQ(r.in.state().pos, (P{0, 0, 0}));
+  EXPECT_EQ(r.ok("X5").kind, MoveKind::Linear);  // the modal G1 is still in force
+  EXPECT_EQ(r.ok("G1 X7 M3").to, (P{7'000, 0, 0}));
+}
+
 TEST(GcodeInterp, IncrementalMode) {
   Script r;
   r.ok("G91 G1 X10 Y-5");

@@ -168,6 +168,27 @@ TEST(GcodeDialect, ThesisRejectsWhatTolerantAccepts) {
   }
 }
 
+// An M code takes its own parameter words (Marlin/RepRap usage the study's Tab. 2 points at:
+// M106 S127 fan speed, M301 P I D gains, M204 P, M92 E); without an M word on the line they
+// are not words of ours (docs/gcode.md "M lines").
+TEST(GcodeParser, MParameterWordsBelongToTheMCode) {
+  for (const Dialect d : {T, L}) {
+    const Block fan = parse_ok("N1 M106 S127", d);
+    EXPECT_EQ(fan.m, 106U);
+    EXPECT_EQ(fan.m_params, 1U << static_cast<unsigned>(MParam::S));
+    EXPECT_EQ(fan.m_value[static_cast<std::size_t>(MParam::S)], 1'270'000);
+    const Block pid = parse_ok("N2 M301 P22.2 I1.08 D114", d);
+    EXPECT_EQ(pid.m_value[static_cast<std::size_t>(MParam::P)], 222'000);
+    EXPECT_EQ(pid.m_value[static_cast<std::size_t>(MParam::D)], 1'140'000);
+    EXPECT_EQ(pid.get(Word::I), 10'800);
+    EXPECT_EQ(parse_ok("N3 M92 E93", d).m_value[static_cast<std::size_t>(MParam::E)], 930'000);
+    EXPECT_EQ(parse_ok("N4 M3 S1000", d).m_value[static_cast<std::size_t>(MParam::S)], 10'000'000);
+  }
+  expect_errors({{"N1 G1 X2 S100", T, ErrorKind::UnknownWord, 10},
+                 {"G1 X2 P5", L, ErrorKind::UnknownWord, 7},
+                 {"M106 S1 S2", L, ErrorKind::DuplicateWord, 9}});
+}
+
 TEST(GcodeDialect, ThesisAcceptsOnlyGOrMAsSecondWord) {
   EXPECT_EQ(parse_ok("N01 M106", T).m, 106U);
   EXPECT_TRUE(parse_ok("N01 M106", T).has_m);
@@ -213,7 +234,7 @@ TEST(GcodeParserErrors, UnknownWord) {
       {"G1 X1 *57", L, ErrorKind::UnknownWord, 7},   // Marlin checksum
       {"#1=5", L, ErrorKind::UnknownWord, 1},
       {"G1 X1 5", L, ErrorKind::UnknownWord, 7},
-      {"M3 S1000", L, ErrorKind::UnknownWord, 4},
+      {"G1 X1 S1000", L, ErrorKind::UnknownWord, 7},  // S belongs to an M code only
       {"N01 G01 X1 %", T, ErrorKind::UnknownWord, 12},
       {"G1 X1 %", L, ErrorKind::UnknownWord, 7},     // '%' only as the first thing on a line
   });

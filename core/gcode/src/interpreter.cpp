@@ -56,6 +56,13 @@ StepResult Interpreter::apply(const Block& b) {
   m.to = state_.pos;
 
   const bool centre_words = b.has(Word::I) || b.has(Word::J);
+  if (b.has_m && b.motion == Motion::None) {
+    // An M code's words are its parameters, never a motion: M206 X40 Y40 sets a home offset
+    // (seed 003, Tab. 2), M301 P.. I.. D.. PID gains. M codes are kept, not executed, so the
+    // line changes nothing but the modal words it carries (docs/gcode.md "M lines").
+    state_ = next;
+    return out;
+  }
   if (!b.has_axis()) {
     // A motion word alone (e.g. "G0 F1500", seed-003.md §2.2) only sets the mode.
     if (centre_words) return fail(ErrorKind::UnusedWord, first_column(b, {Word::I, Word::J}));

@@ -89,6 +89,7 @@ struct Parser {
   int words = 0;  // words parsed so far (comments do not count)
   bool have_units = false;
   bool have_distance = false;
+  std::size_t first_m_param = 0;  // 1 + index of the first S/P/D/E word, 0 if none
 
   ErrorKind fail_kind = ErrorKind::None;
   std::size_t fail_at = 0;
@@ -108,8 +109,9 @@ struct Parser {
       return fail(ErrorKind::UnknownWord, i);
     }
     const char letter = to_upper(raw);
+    const bool m_param = letter == 'S' || letter == 'P' || letter == 'D' || letter == 'E';
     const bool known = letter == 'N' || letter == 'G' || letter == 'M' || letter == 'X' || letter == 'Y' ||
-                       letter == 'Z' || letter == 'I' || letter == 'J' || letter == 'F';
+                       letter == 'Z' || letter == 'I' || letter == 'J' || letter == 'F' || m_param;
     if (!known) return fail(ErrorKind::UnknownWord, i);
     const Number num = parse_number(s, i + 1, end, dialect);
     if (num.error != ErrorKind::None) return fail(num.error, i);
@@ -130,6 +132,20 @@ struct Parser {
         return true;
       case 'G':
         return g_word(num.value, i, col);
+      case 'S':
+      case 'P':
+      case 'D':
+      case 'E': {
+        // An M code's parameter: whether the line has its M word is only known at the end
+        // of the line (finish()), where a stray one becomes UnknownWord at its column.
+        const auto k = static_cast<std::uint8_t>(letter == 'S' ? 0 : letter == 'P' ? 1 : letter == 'D' ? 2 : 3);
+        const auto bit = static_cast<std::uint8_t>(1U << k);
+        if ((block.m_params & bit) != 0) return fail(ErrorKind::DuplicateWord, i);
+        block.m_params = static_cast<std::uint8_t>(block.m_params | bit);
+        block.m_value[k] = num.value;
+        if (first_m_param == 0) first_m_param = i + 1;
+        return true;
+      }
       default:
         break;
     }
@@ -257,7 +273,9 @@ ParseResult parse_line(std::string_view text, std::uint32_t line_no, Dialect d) 
   if (d == Dialect::Tolerant && end > 0 && text[end - 1] == '\r') --end;  // CRLF files
   Parser p{text, end, line_no, d, Block{}};
   p.block.line = line_no;
-  const bool ok = p.characters() && (d == Dialect::Thesis ? p.thesis() : p.tolerant());
+  bool ok = p.characters() && (d == Dialect::Thesis ? p.thesis() : p.tolerant());
+  // S, P, D and E belong to an M code only (docs/gcode.md "M lines").
+  if (ok && p.first_m_param != 0 && !p.block.has_m) ok = p.fail(ErrorKind::UnknownWord, p.first_m_param - 1);
   if (!ok) {
     out.error.kind = p.fail_kind;
     out.error.column = static_cast<std::uint16_t>(p.fail_at + 1);

@@ -27,12 +27,19 @@ enum class Distance : std::uint8_t { Unchanged, Absolute /*G90*/, Incremental /*
 enum class Word : std::uint8_t { X, Y, Z, I, J, F };
 inline constexpr std::size_t kWordCount = 6;
 
+// Parameter words that only an M code takes (M106 S127, M301 P.. I.. D.., M204 P.., M221 S..,
+// M92 E..; docs/gcode.md "M lines"). On a line without an M word they are UnknownWord.
+enum class MParam : std::uint8_t { S, P, D, E };
+inline constexpr std::size_t kMParamCount = 4;
+
 struct Block {
   // What the line says. Absent words hold 0.
   bool has_n = false;
   std::uint32_t n = 0;                         // 0..kMaxCode
   bool has_m = false;
   std::uint32_t m = 0;                         // 0..kMaxCode, kept, never executed (seed-003.md §2.4)
+  std::uint8_t m_params = 0;                   // bit (1 << MParam) set: that M parameter word is on the line
+  std::array<std::int32_t, kMParamCount> m_value{};  // |v| <= kMaxWordValue, 1e-4 units
   Motion motion = Motion::None;                // G0..G3 on this line, None if absent
   bool plane_xy = false;                       // G17 on this line
   Units units = Units::Unchanged;
@@ -56,7 +63,7 @@ struct Block {
   friend constexpr bool operator==(const Block& a, const Block& b) {
     return a.has_n == b.has_n && a.n == b.n && a.has_m == b.has_m && a.m == b.m && a.motion == b.motion &&
            a.plane_xy == b.plane_xy && a.units == b.units && a.distance == b.distance && a.present == b.present &&
-           a.value == b.value;
+           a.value == b.value && a.m_params == b.m_params && a.m_value == b.m_value;
   }
 };
 
