@@ -290,12 +290,17 @@ struct Harness {
 
   // One axis part. ID bytes 0xF0..0xFF give the IDs just past the command table
   // (kCommandCount .. kCommandCount + 15) with any data: intact frames the callback table's
-  // own bound check must reject. The others pick a command and data in its range.
+  // own bound check must reject. 0xE0..0xEF pick one of the commands appended after the first
+  // 24 (goto_slow, move_slow, ...). The others pick one of the first 24 and data in its
+  // range, as every byte below 0xE0 did when the kept reproducers were found.
   static frame::AxisCommand part_of(std::uint8_t id, std::uint16_t raw) {
+    constexpr std::size_t kFirstTable = 24;
+    static_assert(codec::kCommandCount > kFirstTable);
     if (id >= 0xF0) {
       return {static_cast<codec::CommandId>(codec::kCommandCount + (id & 0x0FU)), static_cast<std::int32_t>(raw)};
     }
-    const auto& info = codec::kCommands[id % codec::kCommandCount];
+    const std::size_t k = id >= 0xE0 ? kFirstTable + (id & 0x0FU) % (codec::kCommandCount - kFirstTable) : id % kFirstTable;
+    const auto& info = codec::kCommands[k];
     return {info.id, data_in(info.range, raw)};
   }
 

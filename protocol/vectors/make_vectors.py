@@ -76,7 +76,7 @@ invalid_commands = [
      "error": "bad_crc", "offset": 36},
     {"name": "digit changed, CRC kept", "bytes": flip(base, 19, "1"), "error": "bad_crc", "offset": 36},
     {"name": "X and Y swapped, CRC kept", "bytes": base[:4] + base[12:20] + base[4:12] + base[20:], "error": "bad_crc", "offset": 36},
-    {"name": "unknown command 24", "bytes": command(1, (24, 0), (0, 0)), "error": "unknown_command", "offset": 4},
+    {"name": "unknown command 26", "bytes": command(1, (26, 0), (0, 0)), "error": "unknown_command", "offset": 4},
     {"name": "unknown command 99 on Y", "bytes": command(1, (0, 0), (99, 0)), "error": "unknown_command", "offset": 12},
     {"name": "goto negative", "bytes": command(1, (3, -1), (0, 0)), "error": "data_out_of_range", "offset": 6},
     {"name": "DummyData not zero", "bytes": command(1, (0, 0), (1, 5)), "error": "data_out_of_range", "offset": 14},

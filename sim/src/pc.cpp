@@ -295,8 +295,12 @@ class Pc {
           break;
         // Any other command of the axis releases the held key.
         case sc::Verb::stop: release_and_submit(b, x, part, CommandId::Stop, 0, t); break;
-        case sc::Verb::go_to: release_and_submit(b, x, part, CommandId::Goto, um(a), t); break;
-        case sc::Verb::move: release_and_submit(b, x, part, CommandId::Move, um(a), t); break;
+        case sc::Verb::go_to:
+          release_and_submit(b, x, part, a.word2 == "slow" ? CommandId::GotoSlow : CommandId::Goto, um(a), t);
+          break;
+        case sc::Verb::move:
+          release_and_submit(b, x, part, a.word2 == "slow" ? CommandId::MoveSlow : CommandId::Move, um(a), t);
+          break;
         case sc::Verb::home: release_and_submit(b, x, part, CommandId::Home, 0, t); break;
         case sc::Verb::set_speed:
           submit(b, client::Part::Unit, a.word == "fast" ? CommandId::SetFastSpeed : CommandId::SetSlowSpeed, um(a), t);

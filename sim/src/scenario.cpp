@@ -266,10 +266,12 @@ Action action(LineParser& p, Action a) {
     case Verb::go_to:
       a.axis = p.axis();
       a.amount = p.quantity(Dim::length, "target position");
+      if (!p.done()) a.word2 = p.one_of({"fast", "slow"}, "positioning speed");
       break;
     case Verb::move:
       a.axis = p.axis();
       a.amount = p.quantity(Dim::length, "distance");
+      if (!p.done()) a.word2 = p.one_of({"fast", "slow"}, "positioning speed");
       break;
     case Verb::set_speed:
       a.word = p.one_of({"fast", "slow"}, "speed level");
@@ -668,10 +670,12 @@ std::string to_text(const Scenario& s) {
     } else if (!a.word.empty()) {
       o << ' ' << a.word;
     }
-    if (!a.word2.empty()) o << ' ' << a.word2;
+    const bool level_last = a.verb == Verb::go_to || a.verb == Verb::move;  // goto x 10 mm slow
+    if (!a.word2.empty() && !level_last) o << ' ' << a.word2;
     if (a.amount) {
       o << ' ' << (a.amount->value >= 0 && a.verb == Verb::move ? "+" : "") << q(*a.amount);
     }
+    if (!a.word2.empty() && level_last) o << ' ' << a.word2;
     o << '\n';
   }
   for (const Expectation& e : s.expectations) {

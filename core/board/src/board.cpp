@@ -87,6 +87,8 @@ Board::Board(const Hardware& hw)
   table_.install(c::CommandId::Jog, &Board::on_jog);
   table_.install(c::CommandId::Goto, &Board::on_goto);
   table_.install(c::CommandId::Move, &Board::on_move);
+  table_.install(c::CommandId::GotoSlow, &Board::on_goto_slow);
+  table_.install(c::CommandId::MoveSlow, &Board::on_move_slow);
   table_.install(c::CommandId::Home, &Board::on_home);
   table_.install(c::CommandId::SetFastSpeed, &Board::on_param_id<c::CommandId::SetFastSpeed>);
   table_.install(c::CommandId::SetSlowSpeed, &Board::on_param_id<c::CommandId::SetSlowSpeed>);
@@ -699,26 +701,37 @@ HandlerStatus Board::on_jog(void* ctx, Axis a, std::int32_t data) {
 }
 
 HandlerStatus Board::on_goto(void* ctx, Axis a, std::int32_t um) {
-  auto* b = static_cast<Board*>(ctx);
-  if (b->path_.active()) return b->refuse(a, c::CommandId::Goto);  // the path holds both axes
-  const st::ParameterSet& p = b->store_.current();
-  const bool x = a == Axis::X;
-  const axis::Converted t =
-      axis::target_to_usteps(um, x ? p.soft_min_x_um : p.soft_min_y_um, x ? p.soft_max_x_um : p.soft_max_y_um, b->derived_.mech);
-  if (t.error != axis::Error::None) return b->refuse(a, c::CommandId::Goto);
-  if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Goto);
-  // Positioning runs at the fast level (§4.9: the two levels are the manual speeds; a move
-  // uses the configured positioning speed, which is the fast one).
-  return b->set_axis_command(a, c::CommandId::Goto, {axis::CmdKind::MoveAbs, 0, 1, t.value});
+  return static_cast<Board*>(ctx)->position_absolute(a, c::CommandId::Goto, um, kLevelFast);
+}
+HandlerStatus Board::on_goto_slow(void* ctx, Axis a, std::int32_t um) {
+  return static_cast<Board*>(ctx)->position_absolute(a, c::CommandId::GotoSlow, um, kLevelSlow);
+}
+HandlerStatus Board::on_move(void* ctx, Axis a, std::int32_t um) {
+  return static_cast<Board*>(ctx)->position_relative(a, c::CommandId::Move, um, kLevelFast);
+}
+HandlerStatus Board::on_move_slow(void* ctx, Axis a, std::int32_t um) {
+  return static_cast<Board*>(ctx)->position_relative(a, c::CommandId::MoveSlow, um, kLevelSlow);
 }
 
-HandlerStatus Board::on_move(void* ctx, Axis a, std::int32_t um) {
-  auto* b = static_cast<Board*>(ctx);
-  if (b->path_.active()) return b->refuse(a, c::CommandId::Move);  // the path holds both axes
-  const axis::Converted d = axis::um_to_usteps(um, b->derived_.mech, axis::Round::Nearest);
-  if (d.error != axis::Error::None) return b->refuse(a, c::CommandId::Move);
-  if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Move);
-  return b->set_axis_command(a, c::CommandId::Move, {axis::CmdKind::MoveRel, 0, 1, d.value});
+// Thesis §7.7 and §8.2.2: both speed levels serve manual moves and positioning; goto/move run
+// at the fast level, goto_slow/move_slow at the slow one (docs/protocol.md, the command table).
+HandlerStatus Board::position_absolute(Axis a, c::CommandId id, std::int32_t um, std::uint8_t level) {
+  if (path_.active()) return refuse(a, id);  // the path holds both axes
+  const st::ParameterSet& p = store_.current();
+  const bool x = a == Axis::X;
+  const axis::Converted t =
+      axis::target_to_usteps(um, x ? p.soft_min_x_um : p.soft_min_y_um, x ? p.soft_max_x_um : p.soft_max_y_um, derived_.mech);
+  if (t.error != axis::Error::None) return refuse(a, id);
+  if (!motion_permitted()) return refuse(a, id);
+  return set_axis_command(a, id, {axis::CmdKind::MoveAbs, 0, level, t.value});
+}
+
+HandlerStatus Board::position_relative(Axis a, c::CommandId id, std::int32_t um, std::uint8_t level) {
+  if (path_.active()) return refuse(a, id);  // the path holds both axes
+  const axis::Converted d = axis::um_to_usteps(um, derived_.mech, axis::Round::Nearest);
+  if (d.error != axis::Error::None) return refuse(a, id);
+  if (!motion_permitted()) return refuse(a, id);
+  return set_axis_command(a, id, {axis::CmdKind::MoveRel, 0, level, d.value});
 }
 
 HandlerStatus Board::on_home(void* ctx, Axis a, std::int32_t) {

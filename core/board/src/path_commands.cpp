@@ -77,7 +77,8 @@ void Board::commit_path_frame(const frame::CommandFrame& f) {
   for (const frame::AxisCommand* part : {&f.x, &f.y}) {
     const c::CommandId id = part->id;
     if (segment && (id == c::CommandId::Stop || id == c::CommandId::Jog || id == c::CommandId::Goto ||
-                    id == c::CommandId::Move || id == c::CommandId::Home)) {
+                    id == c::CommandId::Move || id == c::CommandId::GotoSlow || id == c::CommandId::MoveSlow ||
+                    id == c::CommandId::Home)) {
       return refuse_parts(path::Error::MixedParts);
     }
   }

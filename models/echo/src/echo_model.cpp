@@ -516,12 +516,14 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
       return;
     }
     case CommandId::Goto:
-    case CommandId::Move: {
+    case CommandId::GotoSlow:
+    case CommandId::Move:
+    case CommandId::MoveSlow: {
       if (sleeping_) return refuse(a, id, "sleeping");
       if (path_.running) return refuse(a, id, "a path is active");  // cnc.md "Refusals"
       if (!x.homed) return refuse(a, id, "position unknown");  // motion.md §6
       std::int64_t target = 0;
-      if (id == CommandId::Goto) {
+      if (id == CommandId::Goto || id == CommandId::GotoSlow) {
         // motion.md §7 and §10: outside the um limits is refused; the rounded target is
         // pulled back onto an inward-rounded limit.
         if (d < p_.soft_min[a] || d > p_.soft_max[a]) return refuse(a, id, "outside the soft limits");
@@ -638,7 +640,7 @@ const char* EchoModel::path_verdict(const frame::CommandFrame& f, std::array<std
   // cnc.md "Refusals": a segment beside a motion command or a stop is MixedParts.
   for (const auto* q : part) {
     if (q->id == CommandId::Stop || q->id == CommandId::Jog || q->id == CommandId::Goto || q->id == CommandId::Move ||
-        q->id == CommandId::Home) {
+        q->id == CommandId::GotoSlow || q->id == CommandId::MoveSlow || q->id == CommandId::Home) {
       return "a segment beside a motion command";
     }
   }

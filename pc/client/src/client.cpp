@@ -42,7 +42,8 @@ const char* to_string(Outcome o) {
 namespace {
 
 bool moves_axis(c::CommandId id) {
-  return id == c::CommandId::Goto || id == c::CommandId::Move || id == c::CommandId::Home || id == c::CommandId::Jog;
+  return id == c::CommandId::Goto || id == c::CommandId::Move || id == c::CommandId::GotoSlow ||
+         id == c::CommandId::MoveSlow || id == c::CommandId::Home || id == c::CommandId::Jog;
 }
 
 bool is_stop(const Command& cmd) { return cmd.part != Part::Unit && cmd.cmd.id == c::CommandId::Stop; }

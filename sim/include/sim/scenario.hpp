@@ -50,8 +50,8 @@ struct Target {
 enum class Verb : std::uint8_t {
   jog,            // jog AXIS +|- [fast|slow]        manual move, held until stop
   stop,           // stop AXIS
-  go_to,          // goto AXIS LENGTH                absolute move
-  move,           // move AXIS +-LENGTH              relative move
+  go_to,          // goto AXIS LENGTH [fast|slow]    absolute move (fast: goto, slow: goto_slow)
+  move,           // move AXIS +-LENGTH [fast|slow]  relative move (move / move_slow)
   home,           // home AXIS
   set_speed,      // set speed fast|slow SPEED
   set_accel,      // set accel ACCEL

@@ -278,6 +278,13 @@ class Board {
   static frame::HandlerStatus on_jog(void*, Axis, std::int32_t);
   static frame::HandlerStatus on_goto(void*, Axis, std::int32_t);
   static frame::HandlerStatus on_move(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_goto_slow(void*, Axis, std::int32_t);
+  static frame::HandlerStatus on_move_slow(void*, Axis, std::int32_t);
+  // The axis core's speed levels (core/axis Command::level).
+  static constexpr std::uint8_t kLevelSlow = 0;
+  static constexpr std::uint8_t kLevelFast = 1;
+  frame::HandlerStatus position_absolute(Axis a, codec::CommandId id, std::int32_t um, std::uint8_t level);
+  frame::HandlerStatus position_relative(Axis a, codec::CommandId id, std::int32_t um, std::uint8_t level);
   static frame::HandlerStatus on_home(void*, Axis, std::int32_t);
   static frame::HandlerStatus on_param(void*, Axis, std::int32_t, codec::CommandId);
   template <codec::CommandId Id>

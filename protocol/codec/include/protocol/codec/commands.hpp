@@ -37,6 +37,8 @@ enum class CommandId : std::uint8_t {
   PathArcCw = 21,
   PathArcCcw = 22,
   PathEnd = 23,
+  GotoSlow = 24,
+  MoveSlow = 25,
 };
 
 // Unit-wide commands act once per frame whichever axis part carries them; the other part
@@ -66,7 +68,7 @@ struct CommandInfo {
     CommandInfo{CommandId::Move, "move", Scope::Axis, "relative move from the current position", "um", {-99999, 999999}},
     CommandInfo{CommandId::Home, "home", Scope::Axis, "DummyData; reference against the min endstop", "-", {0, 0}},
     CommandInfo{CommandId::SetFastSpeed, "fast", Scope::Axis, "fast manual/positioning speed", "um/s", {1, 999999}},
-    CommandInfo{CommandId::SetSlowSpeed, "slow", Scope::Axis, "slow manual speed", "um/s", {1, 999999}},
+    CommandInfo{CommandId::SetSlowSpeed, "slow", Scope::Axis, "slow manual and positioning speed", "um/s", {1, 999999}},
     CommandInfo{CommandId::SetAccel, "accel", Scope::Axis, "acceleration and deceleration", "um/s^2", {1, 999999}},
     CommandInfo{CommandId::SetStartSpeed, "start", Scope::Axis, "start/stop speed", "um/s", {1, 999999}},
     CommandInfo{CommandId::SetPitch, "pitch", Scope::Axis, "lead-screw pitch", "um/rev", {1, 999999}},
@@ -85,6 +87,10 @@ struct CommandInfo {
     CommandInfo{CommandId::PathArcCw, "arc_cw", Scope::Axis, "absolute end of a clockwise arc (G2)", "um", {0, 999999}},
     CommandInfo{CommandId::PathArcCcw, "arc_ccw", Scope::Axis, "absolute end of a counter-clockwise arc (G3)", "um", {0, 999999}},
     CommandInfo{CommandId::PathEnd, "path_end", Scope::Unit, "DummyData; the last queued segment ends at rest", "-", {0, 0}},
+    // Positioning at the slow speed level (thesis §7.7 and §8.2.2: two speed levels for manual
+    // moves and positioning); goto and move run at the fast one (docs/protocol.md).
+    CommandInfo{CommandId::GotoSlow, "goto_slow", Scope::Axis, "absolute target position, slow speed level", "um", {0, 999999}},
+    CommandInfo{CommandId::MoveSlow, "move_slow", Scope::Axis, "relative move from the current position, slow speed level", "um", {-99999, 999999}},
 };
 
 inline constexpr std::size_t kCommandCount = kCommands.size();
