@@ -2,8 +2,8 @@
 //   0x00-0x9F  key (b % 5, or one of the unused codes when b >= 0x50) held for 20..51 ms of
 //              scans with bounce at both ends, then released for 25 ms; main loop after each ms
 //   0xA0-0xFF  (b - 0x9F) x 16 timer periods of running time
-// Oracles: no crash or UB; after every key the menu, settings and display are the reference
-// model's (models/hc08); the coils show a table pattern; the motor never steps faster than its
+// Oracles: no crash or UB; after every key the menu, settings and display (the adjusted mark
+// included) are the reference model's (models/hc08); the coils show a table pattern; the motor never steps faster than its
 // maximum frequency, changes direction only at or below the start frequency, and stops only
 // from at or below it.
 #include <cstddef>
@@ -39,6 +39,7 @@ struct Rig {
     require(u.display().indicator == m.indicator());
     require(static_cast<int>(u.display().value) == m.value(u.motor().angle_tenths()));
     require(u.settings().speed_centi == m.speed() && u.settings().angle_deg == m.angle());
+    require(u.display().adjusted == m.adjusted());  // a speed outside the motor's range is fitted to it
   }
   void step() {
     if (!u.timer_running()) return;

@@ -7,9 +7,9 @@
 //   0xD0-0xEF  (op & 0x1F) + 1 ms, times 16 when the next byte is odd
 //   0xF0-0xFF  power cycle
 // Oracles: no crash or UB; every reply is exactly what the reference model of the PC's view
-// (models/unit3) says; no pulse towards a closed endstop or against a PC move; a running
-// axis changes direction only from ramp entry 0 and moves one entry at a time; counters stay
-// in the 18-digit range.
+// (models/unit3) says; no pulse towards a closed endstop or against a PC move, no stick start
+// outside the POSITIONS window; a running axis changes direction only from ramp entry 0 and
+// moves one entry at a time; counters stay in the 18-digit range.
 #include <array>
 #include <cstddef>
 #include <cstdint>

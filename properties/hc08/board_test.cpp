@@ -5,6 +5,7 @@
 #include <rapidcheck/gtest.h>
 
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,49 @@ RC_GTEST_PROP(Hc08QueueProps, KeysAreNotLostToMotorMessages, ()) {
   RC_ASSERT(q.dropped() == 0U);
 }
 
+// docs/hc08.md "Power-up": S_DEF (002_*.txt:737); mode A, four-step, right, 1.00 rev/s, 90° [D];
+// the coils of phases 1 and 2 on, PTA3 and PTA4 (Tab. 4.1): port 0x18 [D]; the angle shown 0.0.
+TEST(Hc08Board, PowerUpIsTheDocumentedState) {
+  const b::Board u;
+  EXPECT_EQ(u.menu().state, ap::hc08_menu::State::Def);
+  EXPECT_EQ(u.settings().mode, ap::hc08_motor::Mode::A);
+  EXPECT_EQ(u.settings().drive, ap::hc08_drive::Drive::Full);
+  EXPECT_TRUE(u.settings().right);
+  EXPECT_EQ(u.settings().speed_centi, 100);
+  EXPECT_EQ(u.settings().angle_deg, 90);
+  EXPECT_FALSE(u.timer_running());
+  EXPECT_EQ(u.port(), 0x18);
+  const b::Display want{1, true, false, 'r', '4', 0, 1, false, false};
+  EXPECT_EQ(u.display(), want);
+}
+
+// At rest the coils of the last step stay energised and hold the rotor: a stepper "holds its
+// angle in every position, so it needs power at rest too" (002_*.txt:211, 231; "at every moment
+// at least one phase is on", 215). docs/hc08.md "Power-up".
+TEST(Hc08Board, TheCoilsHoldTheLastStepAtRest) {
+  b::Board u;
+  u.push_key(kMinus);  // mode B
+  u.push_key(kSet);    // 90°: 10 full steps from 0x18 (docs/hc08.md "Excitation"): 0x30 0x60 0x48 0x18 ...
+  u.main_loop();
+  std::vector<std::uint8_t> ports;
+  while (u.timer_running()) {
+    u.timer_match();
+    u.main_loop();
+    ports.push_back(u.port());
+  }
+  ASSERT_EQ(ports.size(), 10U);
+  EXPECT_EQ(ports.back(), 0x60);  // index 10 mod 4 = 2: phases 3 and 4
+  for (int i = 0; i < 1000; ++i) {
+    EXPECT_FALSE(u.timer_match());  // a stray match moves nothing
+    u.main_loop();
+    EXPECT_EQ(u.port(), 0x60);
+  }
+  u.push_key(kRight);  // keys that start nothing leave the coils as they are
+  u.push_key(0x4E);
+  u.main_loop();
+  EXPECT_EQ(u.port(), 0x60);
+}
+
 TEST(Hc08Board, SetStartsModeBAndTheDisplayFollowsTheAngle) {
   b::Board u;
   EXPECT_EQ(u.display().indicator, 1);  // S_DEF, X1
@@ -121,17 +165,53 @@ TEST(Hc08Board, SetStartsModeBAndTheDisplayFollowsTheAngle) {
   EXPECT_EQ(u.display().point, 1);
 }
 
-TEST(Hc08Board, ASpeedTheDriveCannotMakeIsRefusedOnTheDisplay) {
+// The thesis checks the user's inputs and adjusts them to the motor (002_*.txt:729; docs/hc08.md
+// "Menu"): a speed outside 0.02 .. 20.00 rev/s in full step (800 Hz / 40 steps [T Tab. 3.1]) or
+// 0.01 .. 21.25 in half step (1700 Hz / 80) becomes the nearer end, with the adjusted mark.
+TEST(Hc08Board, ASpeedTheMotorCannotMakeIsAdjustedIntoItsRange) {
   b::Board u;
+  const auto keys = [&](std::initializer_list<std::uint8_t> ks) {
+    for (const std::uint8_t k : ks) {  // one key per main-loop pass: the queue holds 8
+      u.push_key(k);
+      u.main_loop();
+    }
+  };
   // To SET_SPEED, open the editor on 01.00, digit 1 up (02.00), digit 0 up twice: 22.00 rev/s,
-  // past full step's 20.00. One key per main-loop pass: the queue holds 8.
-  for (const std::uint8_t k : {kRight, kRight, kRight, kSet, kRight, kPlus, kLeft, kPlus, kPlus, kSet}) {
-    u.push_key(k);
-    u.main_loop();
-  }
-  EXPECT_TRUE(u.display().error);
-  EXPECT_EQ(u.settings().speed_centi, 100);
+  // 880 Hz in full step: 20.00.
+  keys({kRight, kRight, kRight, kSet, kRight, kPlus, kLeft, kPlus, kPlus});
+  EXPECT_EQ(u.display().value, 2200);
+  EXPECT_FALSE(u.display().adjusted);
+  keys({kSet});
+  EXPECT_EQ(u.settings().speed_centi, 2000);
+  EXPECT_TRUE(u.display().adjusted);
+  EXPECT_FALSE(u.display().error);
   EXPECT_EQ(u.menu().state, ap::hc08_menu::State::Speed);
+  EXPECT_EQ(u.display().value, 2000);
+  keys({kLeft});  // the mark lasts until the next key
+  EXPECT_FALSE(u.display().adjusted);
+  // 00.00 in full step: the timer cannot count it, nor 0.01 (6 144 000 ticks past 64 x 65 536):
+  // 0.02 rev/s.
+  keys({kRight, kSet, kMinus, kMinus});  // SET_SPEED again, digit 0: 20.00 -> 10.00 -> 00.00
+  EXPECT_EQ(u.display().value, 0);
+  keys({kSet});
+  EXPECT_EQ(u.settings().speed_centi, 2);
+  EXPECT_TRUE(u.display().adjusted);
+  // 21.25 in half step is the maximum; to full step it becomes 20.00.
+  keys({kLeft, kLeft, kPlus});  // SET_DRIVE, eight-step: 0.02 is made, nothing adjusted
+  EXPECT_EQ(u.settings().drive, ap::hc08_drive::Drive::Half);
+  EXPECT_EQ(u.settings().speed_centi, 2);
+  EXPECT_FALSE(u.display().adjusted);
+  // SET_SPEED, the editor on 00.02: digit 0 +2, digit 1 +1, digit 2 +2, digit 3 +3: 21.25.
+  keys({kRight, kRight, kSet, kPlus, kPlus, kRight, kPlus, kRight, kPlus, kPlus, kRight, kPlus, kPlus, kPlus});
+  EXPECT_EQ(u.display().value, 2125);
+  keys({kSet});
+  EXPECT_EQ(u.settings().speed_centi, 2125);  // 21.25 exactly: 1700 Hz
+  EXPECT_FALSE(u.display().adjusted);
+  keys({kLeft, kLeft, kMinus});  // SET_DRIVE, four-step: 850 Hz is past 800
+  EXPECT_EQ(u.settings().drive, ap::hc08_drive::Drive::Full);
+  EXPECT_EQ(u.settings().speed_centi, 2000);
+  EXPECT_TRUE(u.display().adjusted);
+  EXPECT_EQ(u.display().value, 2000);
 }
 
 // The stateful test: any keys (the five and the others), timer steps and main-loop passes;
@@ -164,6 +244,7 @@ RC_GTEST_PROP(Hc08BoardProps, MenuAndDisplayFollowTheModel, ()) {
     RC_ASSERT(u.settings().speed_centi == m.speed());
     RC_ASSERT(u.settings().angle_deg == m.angle());
     if (known) RC_ASSERT(u.display().error == m.error());
+    if (known) RC_ASSERT(u.display().adjusted == m.adjusted());
   }
 }
 

@@ -31,9 +31,10 @@ int rest(std::uint8_t p) {
 const auto gen_drive = [] { return rc::gen::element(d::Drive::Full, d::Drive::Half); };
 const auto gen_full = [] { return rc::gen::element(d::FullStep::TwoPhase, d::FullStep::Wave); };
 
-TEST(Hc08Drive, TheThesisBytesForTheDefaultOrder) {
-  // seed-002.md §1.7: phase 1..4 on PTA3..PTA6; two-phase 0x18 0x30 0x60 0x48; half step
-  // 0x08 0x18 0x10 0x30 0x20 0x60 0x40 0x48.
+TEST(Hc08Drive, TheReconstructedBytesForTheDefaultOrder) {
+  // Phase 1..4 on PTA3..PTA6 [T Tab. 4.1]; the bytes are seed-002.md §1.7's reconstruction
+  // (docs/hc08.md "Excitation": the thesis's codes were on its CD): two-phase 0x18 0x30 0x60
+  // 0x48; half step 0x08 0x18 0x10 0x30 0x20 0x60 0x40 0x48.
   const std::array<std::uint8_t, 4> two{0x18, 0x30, 0x60, 0x48};
   const std::array<std::uint8_t, 8> half{0x08, 0x18, 0x10, 0x30, 0x20, 0x60, 0x40, 0x48};
   for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(d::port_byte(d::kTwoPhase.pattern[i], {}), two[i]) << i;

@@ -39,6 +39,46 @@ TEST(Hc08Timer, TheThesisWorkedValues) {
   EXPECT_EQ(t::reload(10000, Drive::Half).error, t::Error::OutOfRange);
 }
 
+// The user's speed adjusted into the motor's range (002_*.txt:729: inputs checked "and adjusted
+// where needed"; docs/hc08.md "Menu"): the range ends from Tab. 3.1's maximum operating
+// frequencies, 800 Hz / 40 steps = 20.00 rev/s and 1700 Hz / 80 = 21.25 rev/s, and from the timer,
+// 0.02 rev/s full step (0.01 does not fit, above) and 0.01 half step.
+TEST(Hc08Timer, FitSpeedIsTheNearestSpeedTheMotorMakes) {
+  EXPECT_EQ(t::max_speed(Drive::Full), 2000U);
+  EXPECT_EQ(t::max_speed(Drive::Half), 2125U);
+  EXPECT_EQ(t::min_speed(Drive::Full), 2U);
+  EXPECT_EQ(t::min_speed(Drive::Half), 1U);
+  const auto fit = [](std::uint32_t v, Drive d, std::uint16_t want, t::Adjust how) {
+    const t::Fitted f = t::fit_speed(v, d);
+    EXPECT_EQ(f.speed_centi, want) << v;
+    EXPECT_EQ(f.adjust, how) << v;
+  };
+  fit(100, Drive::Full, 100, t::Adjust::None);
+  fit(2000, Drive::Full, 2000, t::Adjust::None);
+  fit(2001, Drive::Full, 2000, t::Adjust::LoweredToMax);
+  fit(2200, Drive::Full, 2000, t::Adjust::LoweredToMax);
+  fit(9999, Drive::Full, 2000, t::Adjust::LoweredToMax);
+  fit(10000, Drive::Full, 2000, t::Adjust::LoweredToMax);
+  fit(1, Drive::Full, 2, t::Adjust::RaisedToMin);
+  fit(0, Drive::Full, 2, t::Adjust::RaisedToMin);
+  fit(2, Drive::Full, 2, t::Adjust::None);
+  fit(0, Drive::Half, 1, t::Adjust::RaisedToMin);
+  fit(1, Drive::Half, 1, t::Adjust::None);
+  fit(2125, Drive::Half, 2125, t::Adjust::None);
+  fit(2126, Drive::Half, 2125, t::Adjust::LoweredToMax);
+  // Every four-digit speed: the nearer end of the documented range, and kept inside it.
+  for (std::uint32_t v = 0; v <= 9999; ++v) {
+    for (const Drive d : {Drive::Full, Drive::Half}) {
+      const std::uint32_t lo = d == Drive::Full ? 2 : 1;
+      const std::uint32_t hi = d == Drive::Full ? 2000 : 2125;
+      const t::Fitted f = t::fit_speed(v, d);
+      const std::uint32_t want = v < lo ? lo : v > hi ? hi : v;
+      ASSERT_EQ(f.speed_centi, want) << v;
+      ASSERT_EQ(f.adjust, v < lo ? t::Adjust::RaisedToMin : v > hi ? t::Adjust::LoweredToMax : t::Adjust::None) << v;
+    }
+  }
+}
+
 // Every speed 0.01 .. 99.99 rev/s in both drive types: the error is typed exactly where the
 // hardware cannot make the speed; otherwise PS is the smallest that fits, TMOD + 1 is the
 // nearest period, and the frequency error is within half a tick. The worst error is printed

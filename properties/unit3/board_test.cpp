@@ -219,6 +219,76 @@ TEST(Unit3Board, StickIgnoredWhileAPcMoveRunsTheAxis) {
   EXPECT_EQ(r.unit.axis(0).counter, -640);
 }
 
+// The endstop pins are active low (docs/unit3.md "The board"): each is pulled up to 5 V and its
+// switch pulls it to GND when closed, as the buttons are wired (001_*.txt:845-853, 858-866).
+// Pin k is bit k of the port, in the documented order: X min, X max, Y min, Y max, Z min, Z max.
+TEST(Unit3Board, EndstopPinsAreActiveLow) {
+  EXPECT_EQ(u::endstops_from_pins(0x3F), 0);     // all six high: every switch open
+  EXPECT_EQ(u::endstops_from_pins(0xFF), 0);     // the port's bits 6 and 7 are no endstops
+  EXPECT_EQ(u::endstops_from_pins(0x00), 0x3F);  // all six low: all closed
+  EXPECT_EQ(u::endstops_from_pins(0xC0), 0x3F);
+  for (int pin = 0; pin < 6; ++pin) {
+    EXPECT_EQ(u::endstops_from_pins(static_cast<std::uint8_t>(0x3F & ~(1 << pin))), 1 << pin) << pin;
+  }
+  // X's minimum switch closed, its pin (0) low: X towards it is refused, away from it runs.
+  Rig r;
+  r.in.endstops = u::endstops_from_pins(0x3E);
+  r.run(1);
+  r.send("D---;X000000000000320;");
+  EXPECT_EQ(r.rx, "E23;");
+  r.send("D+++;X000000000000320;");
+  r.settle();
+  EXPECT_EQ(r.unit.axis(0).counter, 320);
+  // Every pin high: nothing is closed, X runs back down.
+  r.in.endstops = u::endstops_from_pins(0x3F);
+  r.run(1);  // the unit reads its inputs in the tick
+  r.send("D---;X000000000000320;");
+  r.settle();
+  EXPECT_EQ(r.unit.axis(0).counter, 0);
+}
+
+// docs/unit3.md "The menu": the stick drives the axes in the POSITIONS window only; in MENU,
+// STEP SIZE and THREAD TYPE it reads as centred (an axis it runs ramps down one entry per 10 ms
+// and stops from entry 0); PC moves run in every window.
+TEST(Unit3Board, StickDrivesOnlyInThePositionsWindow) {
+  Rig r;
+  r.unit.press(Button::Enter);  // MENU
+  r.in.adc[0] = 1023;
+  r.run(200);
+  EXPECT_EQ(r.pulses[0], 0U);
+  EXPECT_FALSE(r.unit.out(0).running);
+  r.unit.press(Button::Enter);  // STEP SIZE
+  r.run(200);
+  EXPECT_EQ(r.pulses[0], 0U);
+  r.unit.press(Button::Back);  // MENU (saves the unchanged settings)
+  r.unit.press(Button::Back);  // POSITIONS: the stick drives
+  r.run(400);
+  EXPECT_EQ(r.unit.axis(0).entry, 31);
+  EXPECT_EQ(r.unit.axis(0).source, u::Source::Joystick);
+  r.unit.press(Button::Enter);  // MENU while X runs at the top entry, the stick still full up
+  int entry = r.unit.axis(0).entry;
+  int ms = 0;
+  for (; ms < 1000 && r.unit.out(0).running; ++ms) {
+    r.run(1);
+    if (!r.unit.out(0).running) break;
+    EXPECT_LE(entry - r.unit.axis(0).entry, 1);
+    EXPECT_LE(r.unit.axis(0).entry, entry);
+    entry = r.unit.axis(0).entry;
+  }
+  EXPECT_FALSE(r.unit.out(0).running);
+  EXPECT_EQ(entry, 0);    // it stopped from the start speed
+  EXPECT_GE(ms, 31 * 10);  // 31 entries down, 10 ms each
+  const auto stopped = r.pulses[0];
+  r.run(500);
+  EXPECT_EQ(r.pulses[0], stopped);
+  r.send("D+++;Y000000000000320;");  // a PC move in MENU runs
+  r.settle();
+  EXPECT_EQ(r.unit.axis(1).counter, 320);
+  r.unit.press(Button::Back);  // POSITIONS again: the stick, still full up, drives X
+  r.run(50);
+  EXPECT_TRUE(r.unit.out(0).running);
+}
+
 TEST(Unit3Board, MenuSaveWritesEepromOnceAndSendsTheSettings) {
   Rig r;
   for (const Button b : {Button::Enter, Button::Enter, Button::Right, Button::Right, Button::Back}) r.unit.press(b);

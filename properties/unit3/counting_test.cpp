@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <string>
 
 #include "core/unit3_axis/counting.hpp"
 
@@ -48,14 +49,28 @@ TEST(Unit3Counting, RefusalsChangeNothing) {
 TEST(Unit3Counting, PositionInMicrometres) {
   // Eq. 5: position = count / 6400 * pitch.
   EXPECT_EQ(u::position_um(16000, 0), 1000);   // M2, 0.4 mm/rev [T]: 2.5 rev = 1 mm
-  EXPECT_EQ(u::position_um(6400, 4), 1000);    // M6, 1 mm/rev [T]
+  EXPECT_EQ(u::position_um(6400, 4), 1000);    // M6, 1 mm/rev [T]; at index 4 [D]
   EXPECT_EQ(u::position_um(-6400, 6), -1500);  // M10, 1.5 mm/rev [D]
   EXPECT_EQ(u::position_um(8, 0), 1);          // 0.5 µm: half away from zero
   EXPECT_EQ(u::position_um(-8, 0), -1);
   EXPECT_EQ(u::position_um(7, 0), 0);          // 0.4375 µm
   EXPECT_EQ(u::position_um(u::kMaxCounter, 6), 234'375'000'000'000'000LL);  // (10^18 - 1) * 1500 / 6400 = ...999.77
-  EXPECT_TRUE(u::kThreadTable[0].from_thesis && u::kThreadTable[4].from_thesis);
-  EXPECT_FALSE(u::kThreadTable[1].from_thesis);
+}
+
+// What the thesis states of the thread table, and only that (docs/unit3.md "Counting"): the
+// pitches of M2 (0.4 mm) and M6 (1 mm), 001_*.txt:1037-1039; index 0 = M2 and index 6 = M10,
+// 001_*.txt:1326-1328. M6's index and every other pitch are decisions.
+TEST(Unit3Counting, ThreadTableMarksOnlyWhatTheThesisStates) {
+  for (std::size_t i = 0; i < u::kThreads; ++i) {
+    const std::string name = u::kThreadTable[i].name;
+    EXPECT_EQ(u::kThreadTable[i].pitch_from_thesis, name == "M2" || name == "M6") << name;
+    EXPECT_EQ(u::kThreadTable[i].index_from_thesis, i == 0 || i == 6) << name;
+  }
+  EXPECT_EQ(std::string(u::kThreadTable[0].name), "M2");
+  EXPECT_EQ(u::kThreadTable[0].pitch_um, 400U);
+  EXPECT_EQ(std::string(u::kThreadTable[6].name), "M10");
+  EXPECT_EQ(u::kThreadTable[4].pitch_um, 1000U);  // M6's pitch [T], wherever M6 sits
+  EXPECT_EQ(std::string(u::kThreadTable[4].name), "M6");
 }
 
 }  // namespace

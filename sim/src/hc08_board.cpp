@@ -46,6 +46,7 @@ std::int64_t value_of(const Row& r, Quantity q) {
     case Quantity::Drive: return d.drive == '4' ? 4 : d.drive == '8' ? 8 : 0;
     case Quantity::Direction: return d.direction == 'r' ? 1 : d.direction == 'l' ? -1 : 0;
     case Quantity::Error: return d.error ? 1 : 0;
+    case Quantity::Adjusted: return d.adjusted ? 1 : 0;
     case Quantity::Running: return r.running ? 1 : 0;
     case Quantity::Steps: return static_cast<std::int64_t>(r.steps);
     case Quantity::Position: return r.position;

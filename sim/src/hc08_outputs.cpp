@@ -33,13 +33,14 @@ std::string us_text(std::int64_t units) {
 
 void write_trace_csv(const std::vector<Row>& rows, const std::string& path) {
   std::ofstream f = open(path);
-  f << "t_us,event,key,port,pattern,dir,period_ticks,angle_tenths,position_half,steps,running,state,indicator,value,point,error\n";
+  f << "t_us,event,key,port,pattern,dir,period_ticks,angle_tenths,position_half,steps,running,state,indicator,value,point,error,adjusted\n";
   for (const Row& r : rows) {
     f << us_text(r.t) << ',' << event_name(r.event) << ',' << format_value(Quantity::Port, r.scan) << ','
       << format_value(Quantity::Port, r.port) << ',' << format_value(Quantity::Coils, r.coils) << ',' << static_cast<int>(r.dir)
       << ',' << r.period_ticks << ',' << value_of(r, Quantity::Angle) << ',' << r.position << ',' << r.steps << ','
       << (r.running ? 1 : 0) << ',' << menu_name(r.menu) << ',' << static_cast<unsigned>(r.display.indicator) << ','
-      << r.display.value << ',' << static_cast<unsigned>(r.display.point) << ',' << (r.display.error ? 1 : 0) << '\n';
+      << r.display.value << ',' << static_cast<unsigned>(r.display.point) << ',' << (r.display.error ? 1 : 0) << ','
+      << (r.display.adjusted ? 1 : 0) << '\n';
   }
 }
 

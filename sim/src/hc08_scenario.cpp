@@ -25,7 +25,7 @@ const text::Dialect kDialect = {
 namespace {
 
 constexpr std::array<const char*, kQuantities> kNames = {
-    "value", "point", "indicator", "mode", "drive", "direction", "error", "running", "steps",
+    "value", "point", "indicator", "mode", "drive", "direction", "error", "adjusted", "running", "steps",
     "position", "angle", "frequency", "period", "dir", "coils", "port", "presses", "unknown",
 };
 
@@ -129,6 +129,7 @@ std::int64_t quantity_value(Line& l, Quantity q) {
       if (q == Quantity::Dir && w == "0") return 0;
       l.fail(std::string(quantity_name(q)) + " is r or l, got '" + w + "'");
     case Quantity::Error:
+    case Quantity::Adjusted:
     case Quantity::Running:
       if (w == "0" || w == "1") return w == "1" ? 1 : 0;
       l.fail(std::string(quantity_name(q)) + " is 0 or 1, got '" + w + "'");

@@ -64,6 +64,7 @@ void Board::tick() {
     unit_->receive(rx_line_.front().second);
     rx_line_.pop_front();
   }
+  in_.endstops = unit3_board::endstops_from_pins(endstop_pins_);
   unit_->tick(in_);
   t_ms_ = m;
   const TickSample s = sample_of(*unit_, m, in_.endstops);
@@ -116,8 +117,9 @@ std::string Board::env(const std::string& line) {
   if (verb == "endstop") {
     const auto a = axis_of(a1);
     if (!a || (a2 != "min" && a2 != "max") || (a3 != "on" && a3 != "off")) return "error endstop AXIS min|max on|off";
+    // "on" closes the switch: its pin goes low (active low, unit3_board::endstops_from_pins).
     const std::uint8_t bit = unit3_board::endstop_bit(*a, a2 == "max");
-    in_.endstops = a3 == "on" ? static_cast<std::uint8_t>(in_.endstops | bit) : static_cast<std::uint8_t>(in_.endstops & ~bit);
+    endstop_pins_ = a3 == "on" ? static_cast<std::uint8_t>(endstop_pins_ & ~bit) : static_cast<std::uint8_t>(endstop_pins_ | bit);
     return "ok";
   }
   if (verb == "press") {

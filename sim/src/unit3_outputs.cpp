@@ -72,13 +72,13 @@ void write_vcd(const std::vector<TickSample>& samples, const std::string& path) 
 }
 
 // Two panels over the run's time (the SVG writer of models/waveform): each axis's counter
-// (1/32-step counts), and its step frequency, the ramp entry it runs at (entry i = 25 + 25 i
-// Hz, core/unit3_ramp; 0 at rest).
+// (1/32-step counts), and its step frequency, the ramp entry it runs at (entry i = 25 + 10 i +
+// i (i - 1) / 2 Hz, core/unit3_ramp and docs/unit3.md; 0 at rest).
 void write_svg(const std::vector<TickSample>& samples, const std::string& title, const std::string& path) {
   namespace wf = model::waveform;
   std::array<wf::Panel, 2> panels{
       wf::Panel{"counter", "t [s]", "1/32-step counts", {}},
-      wf::Panel{"step frequency", "t [s]", "Hz (ramp entry i = 25 + 25 i Hz)", {}},
+      wf::Panel{"step frequency", "t [s]", "Hz (ramp entry i = 25 + 10 i + i(i-1)/2 Hz)", {}},
   };
   for (std::size_t a = 0; a < kAxes; ++a) {
     wf::Series counter{kAxisUpper[a], {}, {}, kColour[a], false};

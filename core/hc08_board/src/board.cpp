@@ -40,6 +40,7 @@ void Board::on_key(std::uint8_t code) {
   }
   const m::Action a = m::press(menu_, settings_, *key, motor_.running());
   display_.error = false;
+  display_.adjusted = a == m::Action::SetSpeedAdjusted || a == m::Action::SetDriveAdjusted;
   switch (a) {
     case m::Action::StartStop:
       if (motor_.running()) {
@@ -50,15 +51,16 @@ void Board::on_key(std::uint8_t code) {
       break;
     case m::Action::SetDirection: motor_.set_direction(settings_.right); break;
     case m::Action::SetSpeed:
-      if (motor_.running()) motor_.set_speed(settings_.speed_centi);  // checked by the menu for this drive
+    case m::Action::SetSpeedAdjusted:
+      if (motor_.running()) motor_.set_speed(settings_.speed_centi);  // fitted by the menu to this drive
       break;
     case m::Action::SetDrive:
+    case m::Action::SetDriveAdjusted:
       // At rest (the menu allows it only then); the coils may move the rotor half a step, and
       // no step interrupt reports it, so the shown angle is taken here.
       motor_.set_drive(settings_.drive);
       shown_angle_ = motor_.angle_tenths();
       break;
-    case m::Action::Rejected: display_.error = true; break;
     case m::Action::None:
     case m::Action::SetMode:
     case m::Action::SetAngle: break;

@@ -2,7 +2,11 @@
 
 namespace ap::hc08_drive {
 
-// The thesis's bytes for the default order (seed-002.md §1.7): two-phase 0x18 0x30 0x60 0x48.
+// The port bytes of the default order, as seed-002.md §1.7 reconstructs them (two-phase 0x18
+// 0x30 0x60 0x48). Not the thesis's: it gives only the pin of each phase (PTA3..6, Tab. 4.1,
+// 002_*.txt:676-688) and that its codes are stored and played backwards to reverse
+// (002_*.txt:1046); the codes themselves were on its CD. The tables and the phase order behind
+// these bytes are docs/hc08.md's decisions ("Excitation").
 static_assert(port_byte(kTwoPhase.pattern[0], PhaseOrder{}) == 0x18);
 static_assert(port_byte(kTwoPhase.pattern[3], PhaseOrder{}) == 0x48);
 static_assert(port_byte(kHalf.pattern[5], PhaseOrder{}) == 0x60);

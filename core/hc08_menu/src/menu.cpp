@@ -36,14 +36,15 @@ Action edit_digit(Menu& m, hc08_motor::Settings& set, Key k, bool speed) {
     case Key::Minus: m.edit[m.digit] = static_cast<std::uint8_t>((m.edit[m.digit] + 9U) % 10U); return Action::None;
     case Key::Set: break;
   }
-  // SET closes the editor: the number is checked against what the motor can do [T §4.2.2:
-  // "inputs must be checked by the program"]; refused, the old value stays [D].
+  // SET closes the editor: the number is checked against what the motor can do and adjusted
+  // to the nearest speed it can make (002_*.txt:729: inputs "checked and, where needed,
+  // adjusted", docs/hc08.md "Menu").
   const std::uint16_t v = value_of(m.edit);
   m.state = speed ? State::Speed : State::Angle;
   if (speed) {
-    if (hc08_timer::reload(v, set.drive).error != hc08_timer::Error::None) return Action::Rejected;
-    set.speed_centi = v;
-    return Action::SetSpeed;
+    const hc08_timer::Fitted f = hc08_timer::fit_speed(v, set.drive);
+    set.speed_centi = f.speed_centi;
+    return f.adjust == hc08_timer::Adjust::None ? Action::SetSpeed : Action::SetSpeedAdjusted;
   }
   set.angle_deg = v;  // four digits: always within kAngleMax
   return Action::SetAngle;
@@ -68,16 +69,15 @@ Action press(Menu& m, hc08_motor::Settings& set, Key k, bool running) {
       if (running) return Action::None;  // the mode of a running motor stays [D]
       set.mode = plus ? hc08_motor::Mode::A : hc08_motor::Mode::B;
       return Action::SetMode;
-    case State::Drive:
+    case State::Drive: {
       if (k == Key::Set || running) return Action::None;
-      // The set speed must stay one the new drive type can make (20.50 rev/s is 1640 Hz in
-      // half step, past full step's 800 Hz): otherwise the drive type stays [D].
-      if (hc08_timer::reload(set.speed_centi, plus ? hc08_drive::Drive::Half : hc08_drive::Drive::Full).error !=
-          hc08_timer::Error::None) {
-        return Action::Rejected;
-      }
+      // The drive type changes; a set speed the new one cannot make (20.50 rev/s is 820 Hz in
+      // full step, past its 800 Hz) is adjusted to the nearest it can (002_*.txt:729).
       set.drive = plus ? hc08_drive::Drive::Half : hc08_drive::Drive::Full;
-      return Action::SetDrive;
+      const hc08_timer::Fitted f = hc08_timer::fit_speed(set.speed_centi, set.drive);
+      set.speed_centi = f.speed_centi;
+      return f.adjust == hc08_timer::Adjust::None ? Action::SetDrive : Action::SetDriveAdjusted;
+    }
     case State::Direction:
       if (k == Key::Set) return Action::None;
       set.right = plus;  // Revers = TRUE: right [T]

@@ -22,4 +22,18 @@ Reload reload(std::uint32_t speed_centi, hc08_drive::Drive d) {
   return {Error::TooSlow, 0, 0};
 }
 
+std::uint32_t min_speed(hc08_drive::Drive d) {
+  // 0.01 rev/s fits in half step; in full step 0.01 needs 6 144 000 ticks > 64 x 65 536, 0.02
+  // fits (docs/hc08.md "Timer"): at most two tries, and max_speed always fits.
+  std::uint32_t s = 1;
+  while (s < max_speed(d) && reload(s, d).error != Error::None) ++s;
+  return s;
+}
+
+Fitted fit_speed(std::uint32_t speed_centi, hc08_drive::Drive d) {
+  if (reload(speed_centi, d).error == Error::None) return {static_cast<std::uint16_t>(speed_centi), Adjust::None};
+  if (speed_centi > max_speed(d)) return {static_cast<std::uint16_t>(max_speed(d)), Adjust::LoweredToMax};
+  return {static_cast<std::uint16_t>(min_speed(d)), Adjust::RaisedToMin};
+}
+
 }  // namespace ap::hc08_timer

@@ -143,7 +143,12 @@ void Unit::run_axis(std::size_t a, const Inputs& in) {
   AxisOut& o = out_[a];
   o.pulses = 0;
   o.pulse_at = 0;
-  const auto stick = unit3_joystick::deflection(in.adc[a]);
+  // The stick drives the axes in the POSITIONS window only, where their positions are shown
+  // (docs/unit3.md "The menu": the thesis drives the motors with the stick while the display
+  // shows their positions, 001_*.txt:73-75, 1063-1067 and 1189-1195). In the other windows it
+  // reads as centred: an axis it runs ramps down to entry 0 and stops, one at rest stays there.
+  const auto stick = menu_.window == unit3_menu::Window::Positions ? unit3_joystick::deflection(in.adc[a])
+                                                                    : unit3_joystick::Deflection{};
   const auto per = static_cast<std::int64_t>(unit3_axis::counts_per_pulse(s.mode));
   const auto in_range = [&](std::int8_t dir) {
     const std::int64_t next = s.counter + (dir > 0 ? per : -per);

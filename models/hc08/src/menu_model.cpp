@@ -2,15 +2,19 @@
 
 namespace ap::model::hc08 {
 
-// A speed the timer can make (docs/hc08.md "Timer"): 0.02 .. 20.00 rev/s full step, 0.01 ..
-// 21.25 half step.
-bool MenuModel::speed_ok(int centi, bool half) const {
-  return half ? centi >= 1 && centi <= 2125 : centi >= 2 && centi <= 2000;
+// The speeds the motor makes (docs/hc08.md "Timer"): 0.02 .. 20.00 rev/s full step, 0.01 ..
+// 21.25 half step; a speed outside is set to the nearer end (docs/hc08.md "Menu").
+int MenuModel::fit(int centi, bool half) {
+  const int lo = half ? 1 : 2, hi = half ? 2125 : 2000;
+  const int v = centi < lo ? lo : centi > hi ? hi : centi;
+  adjusted_ = v != centi;
+  return v;
 }
 
 std::string MenuModel::press(int key, bool running) {
   enum { Set, Left, Right, Plus, Minus };
   error_ = false;
+  adjusted_ = false;
   if (state_ >= 5) {  // editing a digit
     switch (key) {
       case Left: digit_ = digit_ > 0 ? digit_ - 1 : 0; return "";
@@ -26,11 +30,7 @@ std::string MenuModel::press(int key, bool running) {
       angle_ = v;
       return "";
     }
-    if (!speed_ok(v, half_)) {
-      error_ = true;
-      return "";
-    }
-    speed_ = v;
+    speed_ = fit(v, half_);
     return "speed";
   }
   if (key == Left) {
@@ -48,11 +48,8 @@ std::string MenuModel::press(int key, bool running) {
       return "";
     case 1:
       if (key == Set || running) return "";
-      if (!speed_ok(speed_, key == Plus)) {
-        error_ = true;
-        return "";
-      }
       half_ = key == Plus;
+      speed_ = fit(speed_, half_);
       return "drive";
     case 2:
       if (key == Set) return "";

@@ -186,6 +186,12 @@ bool PcView::tick(const Pins& p, std::uint8_t endstops, std::vector<int>& stoppe
       ax.counter += p.dir[ua] * static_cast<std::int64_t>(32 >> ax.mode);
       if (ax.remaining > 0 && --ax.remaining == 0) stopped.push_back(a);
     }
+    // The stick drives only in the POSITIONS window (docs/unit3.md "The menu"): an axis with no
+    // PC move may start there only (stopping in the other windows is timing, the unit's).
+    if (!ax.running && ax.remaining == 0 && p.running[ua] && window_ != 0) {
+      why = std::string("the stick started ") + "XYZ"[a] + " outside the POSITIONS window";
+      return false;
+    }
     ax.running = p.running[ua];
     if (ax.remaining > 0 && !ax.running) {
       why = std::string("a PC move of ") + "XYZ"[a] + " stopped before its count";

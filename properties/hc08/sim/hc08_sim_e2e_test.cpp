@@ -578,8 +578,8 @@ TEST(Hc08SimBoard, OutputsAgreeWithTheRun) {
   EXPECT_EQ(count_of(csv, ",key,0x"), 2U);
   // The SET with bounce counts at the 24th scan (stable from the 5th): the move starts at
   // 324 ms, the first step 25 ms later; the last one leaves 1100 on the coils, port 0x60.
-  EXPECT_NE(csv.find("\n349000.000,step,0x2D,0x30,0110,1,61440,90,2,1,1,S_DEF,1,90,1,0\n"), std::string::npos);
-  EXPECT_NE(csv.find("\n574000.000,step,0x00,0x60,1100,1,61440,900,20,10,0,S_DEF,1,900,1,0\n"), std::string::npos);
+  EXPECT_NE(csv.find("\n349000.000,step,0x2D,0x30,0110,1,61440,90,2,1,1,S_DEF,1,90,1,0,0\n"), std::string::npos);
+  EXPECT_NE(csv.find("\n574000.000,step,0x00,0x60,1100,1,61440,900,20,10,0,S_DEF,1,900,1,0,0\n"), std::string::npos);
   namespace wf = ap::model::waveform;
   const wf::VcdDoc vcd = wf::parse_vcd(slurp(r.out_dir + "/waveforms.vcd"));
   const wf::VcdDoc::Var* key = vcd.find("hc08", "key");

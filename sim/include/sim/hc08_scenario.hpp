@@ -53,18 +53,19 @@ using text::op_text;
 
 // What an expectation reads (docs/hc08-sim.md "Quantities"). The display's: Value (digits 1-4),
 // Point (digits after the decimal point), Indicator (X1..X6), Mode (K2 = A, K3 = B), Drive
-// (digit 8: 4 or 8), Direction (digit 5: r = +1, l = -1), Error. The motor's, from the phase
+// (digit 8: 4 or 8), Direction (digit 5: r = +1, l = -1), Error, Adjusted (the last key brought
+// the set speed into the motor's range, docs/hc08.md "Menu"). The motor's, from the phase
 // lines: Running, Steps (timer-match steps since power-up), Position (half steps, right +),
 // Angle (the rotor's angle 0..3595 in tenths), Frequency (Hz of the latest step) and Period
 // (its BUSCLK ticks), Dir (of the latest step: +1, -1, 0 before any), Coils (4 bits in
 // rotational order), Port (the PTA byte). The keypad's: Presses (debounced presses that
 // reached the queue, unused keys included) and Unknown (presses of unused keys).
 enum class Quantity : std::uint8_t {
-  Value, Point, Indicator, Mode, Drive, Direction, Error,
+  Value, Point, Indicator, Mode, Drive, Direction, Error, Adjusted,
   Running, Steps, Position, Angle, Frequency, Period, Dir, Coils, Port,
   Presses, Unknown,
 };
-inline constexpr std::size_t kQuantities = 18;
+inline constexpr std::size_t kQuantities = 19;
 const char* quantity_name(Quantity q);
 // The quantity of a name (quantity_name's inverse); false for an unknown name.
 bool quantity_of(const std::string& name, Quantity& q);

@@ -74,6 +74,9 @@ class Board {
   std::array<std::uint8_t, unit3_settings::kImageSize> eeprom_{};
   std::optional<unit3_board::Unit> unit_;
   unit3_board::Inputs in_{};
+  // The six endstop pins as the port reads them: high = open (the pull-ups), a closed switch
+  // pulls its pin low; each tick reads them into in_.endstops (unit3_board::endstops_from_pins).
+  std::uint8_t endstop_pins_ = unit3_board::kEndstopPins;
   std::uint64_t t_ms_ = 0;
   std::deque<std::pair<std::int64_t, std::uint8_t>> rx_line_;  // (arrival in line units, byte)
   std::int64_t rx_free_ = 0;                                   // the line's next free time

@@ -24,7 +24,10 @@ struct Display {
   char drive = '4';               // '4' four-step, '8' eight-step [D]
   std::uint16_t value = 0;        // digits 1-4
   std::uint8_t point = 0;         // digits after the decimal point: speed 2, angle in tenths 1, angle 0
-  bool error = false;             // the last SET was refused (a speed the timer cannot make) [D]
+  bool error = false;             // the last SET could not start the motor [D]; the menu sets
+                                  // only speeds it can make, so this stays off in use
+  bool adjusted = false;          // the last key adjusted the set speed into the motor's range
+                                  // (002_*.txt:729; until the next key) [D]
   friend constexpr bool operator==(const Display&, const Display&) = default;
 };
 

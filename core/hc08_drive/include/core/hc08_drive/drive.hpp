@@ -3,9 +3,11 @@
 // of the SMR 300-100-RI/24 are driven straight from port A (phase 1..4 on PTA3..PTA6, a 1
 // energises the coil [T Tab. 4.1]); full step ("four-step", 40 steps/rev, 9°) or half step
 // ("eight-step", 80 steps/rev, 4.5°) [T Tab. 3.1]. The thesis stores "codes that correspond to
-// the sequence of energised phases" and reverses by playing them backwards [T §5.3.3]; the
-// tables themselves were on its CD. Here they are data over the four coils in rotational
-// order, with the two open questions as parameters [D]: whether full step energises one coil
+// the sequence of energised phases" and reverses by playing them backwards [T §5.3.3,
+// 002_*.txt:1046]; the codes themselves were on its CD and are not in the text. So every table
+// here is a reconstruction [D, docs/hc08.md "Excitation"]: the textbook sequences over the four
+// coils in rotational order (two-phase or wave full step, half step alternating one and two
+// coils), with the two open questions as parameters: whether full step energises one coil
 // (wave) or two adjacent coils (two-phase, the default), and which phase sits at which
 // rotational position (the default: phase 1, 2, 3, 4 in that order).
 #include <array>

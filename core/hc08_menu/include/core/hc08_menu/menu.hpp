@@ -40,8 +40,12 @@ enum class Action : std::uint8_t {
   SetDirection,  // settings.right changed
   SetSpeed,      // the edited speed accepted into settings.speed_centi
   SetAngle,      // the edited angle accepted into settings.angle_deg
-  Rejected,      // a speed (edited, or the set one under a new drive type) the timer cannot
-                 // make: the settings stay as they were
+  // The thesis checks the user's inputs and adjusts them to the motor (002_*.txt:729): a speed
+  // the motor cannot make is set to the nearest it can (hc08_timer::fit_speed) and said so.
+  SetSpeedAdjusted,  // the edited speed was outside the drive type's range: settings.speed_centi
+                     // holds the nearest end of it instead
+  SetDriveAdjusted,  // settings.drive changed, and the set speed, outside the new drive type's
+                     // range (21.25 rev/s is 850 Hz in full step), is its nearest end now
 };
 
 // One key in the first pass. `settings` is the unit's; it changes only as the Action says.

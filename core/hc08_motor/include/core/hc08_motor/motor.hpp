@@ -13,12 +13,14 @@ namespace ap::hc08_motor {
 enum class Mode : std::uint8_t { A = 0, B = 1 };  // turn at a speed / turn by an angle [T]
 inline constexpr std::uint16_t kAngleMax = 9999;   // four digits, degrees [T §4.2.3; whole turns allowed, D]
 
+// The defaults are the power-up settings; the thesis names none of them (its MCon initial
+// values were on its CD), each is a decision of docs/hc08.md "Power-up".
 struct Settings {
-  Mode mode = Mode::A;
-  hc08_drive::Drive drive = hc08_drive::Drive::Full;
+  Mode mode = Mode::A;                                 // [D] the first mode of the assignment
+  hc08_drive::Drive drive = hc08_drive::Drive::Full;  // [D] four-step, the larger holding torque [T Tab. 3.1]
   bool right = true;              // Revers = TRUE is "right" [T §5.2.5]; right = the table forwards [D]
-  std::uint16_t speed_centi = 100;  // 1.00 rev/s [D]
-  std::uint16_t angle_deg = 90;     // [D]
+  std::uint16_t speed_centi = 100;  // 1.00 rev/s [D]: 40 / 80 Hz, below both start frequencies
+  std::uint16_t angle_deg = 90;     // [D] a whole number of steps in both drive types (10, 20)
 };
 
 enum class Error : std::uint8_t {

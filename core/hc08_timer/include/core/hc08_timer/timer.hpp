@@ -38,6 +38,28 @@ struct Reload {
 // (the thesis's TMOD = BUSCLK / (2^PS speed steps) is the period; the HC08 counts TMOD + 1).
 Reload reload(std::uint32_t speed_centi, hc08_drive::Drive d);
 
+// The speeds the motor can be run at in drive type d, in 0.01 rev/s (docs/hc08.md "Timer"): up
+// to its maximum operating frequency [T Tab. 3.1] (800 Hz / 40 = 20.00 rev/s full step, 1700 Hz
+// / 80 = 21.25 rev/s half step), down to the slowest whose period fits 16 bits at /64 (0.02 rev/s
+// full step, 0.01 half step).
+constexpr std::uint32_t max_speed(hc08_drive::Drive d) { return max_hz(d) * 100U / hc08_drive::steps_per_rev(d); }
+std::uint32_t min_speed(hc08_drive::Drive d);
+
+// How fit_speed changed a speed.
+enum class Adjust : std::uint8_t {
+  None = 0,      // the motor can make it: kept
+  RaisedToMin,   // 0 or too slow for the timer: min_speed
+  LoweredToMax,  // above the motor's maximum (or past four digits): max_speed
+};
+struct Fitted {
+  std::uint16_t speed_centi = 0;  // always one reload() makes in this drive type
+  Adjust adjust = Adjust::None;
+};
+// A speed the user entered, brought into what the motor can make: the thesis checks the inputs
+// and adjusts them where needed to fit the motor's properties (002_*.txt:729, docs/hc08.md
+// "Menu"). The nearest end of [min_speed, max_speed].
+Fitted fit_speed(std::uint32_t speed_centi, hc08_drive::Drive d);
+
 // The step frequency a reload makes, in mHz (for the error table and the tests).
 constexpr std::uint64_t reload_mhz(const Reload& r) {
   return (std::uint64_t{kBusHz} * 1000U) / ((std::uint64_t{r.tmod} + 1U) << r.ps);

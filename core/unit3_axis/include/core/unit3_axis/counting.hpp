@@ -24,17 +24,21 @@ inline constexpr std::array<ModePins, kModes> kModePins = {{
 }};
 constexpr std::uint32_t counts_per_pulse(std::uint8_t mode) { return kCountsPerFullStep >> mode; }
 
-// Thread pitch per index, µm per revolution. [T] gives M2 = 0.4 mm and M6 = 1 mm; the others
-// are the ISO coarse pitches of the sizes the index runs through (M3, M4, M5, M8, M10) [D].
+// Thread pitch per index, µm per revolution. The thesis gives two pitches, M2 = 0.4 mm and
+// M6 = 1 mm (001_*.txt:1037-1039), and two places, index 0 = M2 and index 6 = M10
+// (001_*.txt:1326-1328). The rest is [D]: the sizes M3, M4, M5 and M8 between them (so M6 sits at
+// index 4) and the ISO coarse pitches of M3, M4, M5, M8 and M10. Each entry says which of its
+// two halves the thesis states.
 inline constexpr std::uint8_t kThreads = 7;
 struct Thread {
   const char* name;
   std::uint32_t pitch_um;
-  bool from_thesis;
+  bool pitch_from_thesis;  // the pitch is the thesis's
+  bool index_from_thesis;  // the thesis puts this thread at this index
 };
 inline constexpr std::array<Thread, kThreads> kThreadTable = {{
-    {"M2", 400, true}, {"M3", 500, false}, {"M4", 700, false}, {"M5", 800, false},
-    {"M6", 1000, true}, {"M8", 1250, false}, {"M10", 1500, false},
+    {"M2", 400, true, true}, {"M3", 500, false, false}, {"M4", 700, false, false}, {"M5", 800, false, false},
+    {"M6", 1000, true, false}, {"M8", 1250, false, false}, {"M10", 1500, false, true},
 }};
 
 // The counter's range: what the unit reports (18 digits, docs/unit3.md "The wire"). A move

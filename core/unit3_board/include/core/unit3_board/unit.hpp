@@ -8,6 +8,8 @@
 // Rules (docs/unit3.md "The board"):
 //   - An axis runs for one source at a time: a PC move or the joystick. A move for a running
 //     axis is refused (E20 busy); the stick is ignored on an axis a PC move runs.
+//   - The stick drives only in the POSITIONS window; in the menu windows it reads as centred
+//     (an axis it runs ramps down and stops). PC moves run in every window.
 //   - Every move starts at entry 0 of the ramp table, climbs one entry per 10 ms and ends at
 //     entry 0 on its exact count (the ramp-down the thesis lacks). The stick reverses or stops
 //     an axis only from entry 0.
@@ -45,14 +47,25 @@ enum class Refusal : std::uint8_t {
 const char* refusal_key(std::uint8_t code);
 
 // Endstop inputs, bit 2a = axis a's minimum end, bit 2a + 1 = its maximum end, 1 = switch
-// closed (the pins are active low [T]; the board layer inverts them) [D].
+// closed [D]: the state of the switches, not the level of their pins (endstops_from_pins).
 constexpr std::uint8_t endstop_bit(std::size_t axis, bool max_end) {
   return static_cast<std::uint8_t>(1U << (2U * axis + (max_end ? 1U : 0U)));
+}
+inline constexpr std::uint8_t kEndstopPins = 0x3F;  // the six inputs, bits 0..5 as endstop_bit
+
+// The six endstop pins as the port reads them, in endstop_bit's order, to the switch state
+// Inputs::endstops carries. The pins are active low: each has a 1 kΩ pull-up to 5 V and its
+// switch pulls it to GND, log 0, when closed, wired as the buttons are
+// (001_*.txt:845-853 and 858-866). So a high pin is an open switch; the port's two other bits are
+// not endstops and are ignored. Whatever reads the port fills Inputs through this: in the
+// harness, the simulated board (sim/src/unit3_board.cpp), which holds the six pin levels.
+constexpr std::uint8_t endstops_from_pins(std::uint8_t pin_levels) {
+  return static_cast<std::uint8_t>(~pin_levels & kEndstopPins);
 }
 
 struct Inputs {
   std::array<std::uint16_t, kAxes> adc{512, 512, 512};  // joystick, ADC0..2 -> X, Y, Z [D]
-  std::uint8_t endstops = 0;
+  std::uint8_t endstops = 0;  // closed switches (endstop_bit); endstops_from_pins of the port
 };
 
 enum class Source : std::uint8_t { Idle, Pc, Joystick };

@@ -2,9 +2,13 @@
 // The unit's step timing (seed 001 §3.2, §3.5; docs/unit3.md "Ramp and step timer"): one
 // 16-bit timer per axis in CTC mode whose TOP (OCRnA) comes from a 32-entry ramp table, and
 // the rule that moves an axis through the table one entry per ramp interval.
-// The thesis gives the table only as a graph (Obr. 17) and says the motors "accelerate
-// linearly": here entry i runs at kStartHz + i * kStepHz and the index moves by at most one
-// entry per kRampMs, a constant acceleration of kStepHz / kRampMs (2500 pulses/s^2) [D].
+// The thesis gives the table only as a graph (Obr. 17) and two sentences on it
+// (../shared/seeds/001_*.txt:1061-1067): at low speeds the motors "accelerate much more slowly
+// than at higher speeds" (so the stick can position precisely), and they "accelerate
+// linearly". Read together [D, docs/unit3.md "Ramp and step timer"]: the frequency step from
+// one entry to the next grows by the same kStepGrowthHz at every entry (no jump in the
+// acceleration), from kFirstStepHz between entries 0 and 1 to four times that between 30 and
+// 31; the ends stay 25 Hz and 800 Hz. The index moves by at most one entry per kRampMs.
 // Integer-only; the ranges below are what the tests and proofs speak about.
 #include <array>
 #include <cstdint>
@@ -16,15 +20,20 @@ inline constexpr std::uint32_t kPrescaler = 64;                    // [D]
 inline constexpr std::uint32_t kTimerHz = kCpuHz / kPrescaler;     // 250 kHz, 4 us per clock
 inline constexpr std::uint8_t kEntries = 32;                       // indices 0..31 [T §3.5]
 inline constexpr std::uint32_t kStartHz = 25;                      // entry 0 [D]
-inline constexpr std::uint32_t kStepHz = 25;                       // per entry [D]
+inline constexpr std::uint32_t kFirstStepHz = 10;                  // entry 1 - entry 0 [D]
+inline constexpr std::uint32_t kStepGrowthHz = 1;                  // each step 1 Hz above the last [D]
 inline constexpr std::uint32_t kRampMs = 10;                       // one entry per interval [D]
 inline constexpr std::uint32_t kTickMs = 1;                        // the main loop's period [D]
 inline constexpr std::uint32_t kTickClocks = kTimerHz / 1000 * kTickMs;     // 250
 inline constexpr std::uint32_t kIntervalClocks = kTickClocks * kRampMs / kTickMs;  // 2500
 
 // The frequency entry i stands for, and the TOP that makes it: f = kTimerHz / (TOP + 1), TOP
-// rounded to the nearest clock.
-constexpr std::uint32_t entry_hz(std::uint8_t i) { return kStartHz + kStepHz * i; }
+// rounded to the nearest clock. The steps 10, 11, ..., 40 Hz sum to f(i) = 25 + 10 i + i (i - 1) / 2:
+// 25, 35, 46, ... 760, 800 Hz (i (i - 1) is even, so the division is exact; i * i >= i, no wrap).
+constexpr std::uint32_t entry_hz(std::uint8_t i) {
+  return kStartHz + kFirstStepHz * i + kStepGrowthHz * ((std::uint32_t{i} * i - i) / 2U);
+}
+static_assert(entry_hz(kEntries - 1) == 800);  // the documented top speed
 constexpr std::uint16_t top_for(std::uint32_t hz) {
   return static_cast<std::uint16_t>((kTimerHz + hz / 2) / hz - 1);
 }

@@ -22,7 +22,8 @@ struct Settings {
 };
 
 // Power-up without valid settings [D]: full step (the DRV8825's MODE pins default, all low)
-// and M6 (1 mm per revolution, one of the thesis's two stated pitches).
+// and M6 (1 mm per revolution, one of the thesis's two stated pitches), which is thread digit 4
+// by the table's decided order (core/unit3_axis, kThreadTable).
 inline constexpr Settings kDefaults{{0, 0, 0}, {4, 4, 4}};
 
 enum class Load : std::uint8_t {

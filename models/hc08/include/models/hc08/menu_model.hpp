@@ -18,6 +18,7 @@ class MenuModel {
   int indicator() const;           // 1..6
   int value(int angle_tenths) const;  // digits 1-4
   bool error() const { return error_; }
+  bool adjusted() const { return adjusted_; }  // the last key brought the speed into range
 
   // State and settings (the names of docs/hc08.md).
   std::string state() const { return kNames[state_]; }
@@ -29,12 +30,13 @@ class MenuModel {
 
  private:
   static constexpr const char* kNames[7] = {"S_DEF", "SET_DRIVE", "SET_DIRECT", "SET_SPEED", "SET_ANGLE", "SET_SPEEDx", "SET_ANGLEx"};
-  bool speed_ok(int centi, bool half) const;
+  // The speed brought into the drive type's range; sets adjusted_ when it changed.
+  int fit(int centi, bool half);
 
   int state_ = 0;
   int digit_ = 0;
   int edit_[4] = {0, 0, 0, 0};
-  bool mode_a_ = true, half_ = false, right_ = true, error_ = false;
+  bool mode_a_ = true, half_ = false, right_ = true, error_ = false, adjusted_ = false;
   int speed_ = 100, angle_ = 90;
 };
 

@@ -29,7 +29,8 @@ class PcView {
   // A button; returns the replies.
   std::vector<std::string> press(int button);  // 0 Enter, 1 Back, 2 Up, 3 Down, 4 Left, 5 Right
   // One tick's pins. Returns false with `why` when a pulse is one the model forbids (towards a
-  // closed endstop, against a PC move's direction, past its count). `stopped` gets the axes
+  // closed endstop, against a PC move's direction, past its count) or an axis without a PC move
+  // starts outside the POSITIONS window (the stick drives there only). `stopped` gets the axes
   // whose PC move ended in this tick (a report of each is owed), `cut` those an endstop cut (E23).
   bool tick(const Pins& p, std::uint8_t endstops, std::vector<int>& stopped, std::vector<int>& cut, std::string& why);
   // Power cycle: counters 0, the stored settings back (the model stores on every save).
