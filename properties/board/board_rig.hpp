@@ -51,6 +51,7 @@ struct Rig {
   // How far each motor turned, in 1/256 full step, as the TMC2130 model lets it: nothing
   // while the power stage is off (TOFF = 0 or DRV_ENN high), CHOPCONF.MRES per edge.
   std::array<std::int64_t, kAxes> rotor_256{};
+  int kill_switch_pulls = 0;  // Hardware::power_off calls
   std::unique_ptr<Board> board;
   std::uint16_t seq = 0;
 
@@ -71,6 +72,7 @@ struct Rig {
     r->tmc[i].set_drv_enn(!m.enable);
     r->rotor_256[i] += r->tmc[i].step(m.steps, m.dir);
   }
+  static void kill(void* ctx) { ++static_cast<Rig*>(ctx)->kill_switch_pulls; }
   static void uart(void* ctx, std::span<const std::uint8_t> bytes) {
     Echo e{};
     if (bytes.size() == e.size()) {
@@ -88,6 +90,7 @@ struct Rig {
     hw.sample = &Rig::sample;
     hw.motor = &Rig::drive;
     hw.uart_tx = &Rig::uart;
+    hw.power_off = &Rig::kill;
     return hw;
   }
 

@@ -89,6 +89,59 @@ TEST(BoardBoot, AGotoTurnsTheMotorThroughTheDriver) {
   EXPECT_EQ(r.steps_total[0], 16000);
 }
 
+// Thesis §7.9.5 and §7.7.2 "FRAM alternative": the button's off request runs the shutdown
+// sequence (the carriage brakes, the step counters go to FRAM with their validity flag), then
+// the KillSwitch; a board without an encoder starts from the saved counter at the next
+// power-up (docs/board.md "Button and shutdown").
+TEST(BoardShutdown, TheButtonSavesTheCounterAndPullsTheKillSwitch) {
+  Rig r;
+  r.in.endstop_min[0] = 1;  // no encoder; the carriage rests on its min switch: homing completes at once
+  r.boot();
+  r.send(C::Home, 0);
+  r.tick();
+  ASSERT_EQ(r.ax(Axis::X).homed, 1);
+  r.in.endstop_min[0] = 0;
+  r.send(C::Goto, 10000);  // 10 mm = 5 turns of a 2 mm screw = 16000 usteps at 16 x 200
+  for (int t = 0; t < 1500; ++t) {
+    if (t % 100 == 99) r.send(C::Nop, 0);
+    r.tick();
+  }
+  r.send(C::Jog, 2);  // moving when the button is pressed
+  r.tick(50);
+  ASSERT_NE(r.ax(Axis::X).phase, axis::Phase::Stop);
+  r.in.button = true;  // the controller's off request (released since power-up)
+  int t = 0;
+  for (; t < 3000 && r.kill_switch_pulls == 0; ++t) r.tick();
+  EXPECT_EQ(r.kill_switch_pulls, 1);
+  EXPECT_TRUE(r.board->powered_off());
+  EXPECT_EQ(r.ax(Axis::X).phase, axis::Phase::Stop);
+  const std::int32_t stood = r.ax(Axis::X).pos;
+  EXPECT_GT(stood, 16000);  // it braked from the jog, forward
+  const auto ticks = r.board->ticks();
+  r.tick(10);
+  EXPECT_EQ(r.board->ticks(), ticks) << "a switched-off core runs no more ticks";
+  EXPECT_EQ(r.kill_switch_pulls, 1);
+  // Power-up with no encoder: the saved counter, homed.
+  r.in.button = false;
+  r.boot();
+  EXPECT_EQ(r.ax(Axis::X).pos, stood);
+  EXPECT_EQ(r.ax(Axis::X).homed, 1);
+}
+
+// The press that switched the unit on is not an off request: the line must be released first.
+TEST(BoardShutdown, APressHeldThroughPowerUpIsNotAnOffRequest) {
+  Rig r;
+  r.in.button = true;
+  r.boot();
+  r.tick(100);
+  EXPECT_FALSE(r.board->off_requested());
+  r.in.button = false;
+  r.tick();
+  r.in.button = true;
+  r.tick();
+  EXPECT_TRUE(r.board->off_requested());
+}
+
 TEST(BoardEcho, EchoIsBuiltAfterTheCommandTookEffect) {
   Rig r;
   r.boot();

@@ -105,7 +105,7 @@ TEST(dds_scenario_errors, ParseErrorCarriesFileAndLine) {
 
 TEST(dds_scenario_errors, SetupAndFaultStatementsAreChecked) {
   const std::vector<Bad> cases{
-      {"board wifi on\n", "t.scn:3: board setting must be battery|charger|usb|ble|temperature|pos|endstop|param|fram, got 'wifi'"},
+      {"board wifi on\n", "t.scn:3: board setting must be battery|charger|usb|ble|temperature|pos|endstop|encoder|param|fram, got 'wifi'"},
       {"board battery 3 A\n", "t.scn:3: battery voltage: expected a voltage (mV, V), got a current (mA, A)"},
       {"board battery -3 V\n", "t.scn:3: battery voltage must not be negative"},
       {"board usb maybe\n", "t.scn:3: usb must be plugged|unplugged, got 'maybe'"},

@@ -42,7 +42,7 @@ TEST(dds_scenario, BundledScenariosParseAndRoundTrip) {
                                        "link_loss_jog",  "homing",          "faulty_link_jog",
                                        "many_boards",    "many_boards_faults", "gcode_thesis",
                                        "sensors",        "ble_led",         "homing_power_cycle",
-                                       "positioning_slow"};
+                                       "positioning_slow", "shutdown_button"};
   const std::set<std::string> regressions{"link_all_faults", "link_corrupt_delay", "link_corrupt_drop",
                                           "link_corrupt_reorder", "link_drop_stop_lost"};
   std::set<std::string> found, found_regressions;

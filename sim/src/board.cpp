@@ -168,6 +168,7 @@ void SimBoard::boot() {
   hw.uart_tx = &SimBoard::uart_tx;
   hw.led = &SimBoard::led_out;
   hw.encoder_zero = &SimBoard::encoder_zero;
+  hw.power_off = &SimBoard::power_off;
   hw.frame_taken = &SimBoard::frame_taken;
   checker_.reset();   // it refers to the board it was made for
   board_ = std::make_unique<board::Board>(hw);
@@ -239,10 +240,13 @@ void SimBoard::fill_inputs(board::Inputs& in) {
     const std::int64_t total = encoder_raw_counts(a) - encoder_offset_[a];
     const std::int64_t turns = total >= 0 ? total / axis::kEncoderCounts : -((-total + axis::kEncoderCounts - 1) / axis::kEncoderCounts);
     const std::int64_t counts = total - turns * axis::kEncoderCounts;
-    in.encoder[a] = axis::EncoderReading{static_cast<std::int32_t>(turns), static_cast<std::uint16_t>(counts), 1};
+    // An encoder taken off the board ("encoder off"): it answers nothing valid.
+    in.encoder[a] = axis::EncoderReading{static_cast<std::int32_t>(turns), static_cast<std::uint16_t>(counts),
+                                         encoder_fitted_ ? std::uint8_t{1} : std::uint8_t{0}};
   }
   in.usb = usb_;
   in.charger = charger_;
+  in.button = button_;
   in.battery_mv = battery_mv_;
   // Power module: charging current positive, discharge negative (more while a motor runs).
   const bool running = out_[0].steps != 0 || out_[1].steps != 0;
@@ -492,8 +496,26 @@ void SimBoard::advance_to(std::int64_t t_us) {
 }
 
 void SimBoard::tick() {
-  monitor_.before_tick(*board_);
   if (button_ && now_us_ >= button_until_us_) button_ = false;
+  if (powered_off_) {
+    // The KillSwitch cut the supply (docs/board.md "Button and shutdown"): nothing runs until
+    // the button's controller switches the unit on again, which is a power-up.
+    // A new press: the one that asked for the shutdown may still be held.
+    const bool press = button_ && !button_at_off_;
+    button_at_off_ = button_;
+    if (press) {
+      powered_off_ = false;
+      power_cycle_parts();
+      boot();
+    } else {
+      for (std::size_t a = 0; a < board::kAxes; ++a) motor_effect(a, board::MotorOutput{false, 1, 0, 0});
+      trace_tick();
+      ++ticks_;
+      now_us_ = static_cast<std::int64_t>(ticks_) * axis::kTickUs;
+      return;
+    }
+  }
+  monitor_.before_tick(*board_);
   tick_echoes_.clear();
   const std::uint64_t samples = samples_;
   sensors_tick();
@@ -626,8 +648,23 @@ void SimBoard::write_path_outputs() const {
   wf::write_svg(o, "Board " + std::to_string(opt_.id) + ": the path's S-curve (seed-003.md Fig. 30)", panels);
 }
 
+void SimBoard::power_cycle_parts() {
+  // Power cycle: the drivers and the sensors lose their registers, the FRAM (and the
+  // encoder's programmed zero) keep their contents.
+  for (auto& d : tmc_) d.power_cycle();
+  tmp117_.power_on_reset();
+  gyro_.power_on_reset();
+}
+
+void SimBoard::power_off(void* ctx) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  s->powered_off_ = true;
+  s->button_at_off_ = true;
+}
+
 void SimBoard::rx(std::span<const std::uint8_t> bytes) {
   if (!board_) boot();
+  if (powered_off_) return;  // an unpowered UART takes nothing
   if (on_qemu()) {
     qemu_->link_write(bytes);
     link_delivered_ += static_cast<std::uint32_t>(bytes.size());
@@ -644,7 +681,7 @@ std::vector<std::uint8_t> SimBoard::take_tx(std::size_t max_bytes) {
   return out;
 }
 
-std::uint8_t SimBoard::led() const { return board_ ? led_code(*board_) : 0; }
+std::uint8_t SimBoard::led() const { return board_ && !powered_off_ ? led_code(*board_) : 0; }  // unpowered: dark
 
 mech::Result SimBoard::mechanics(std::size_t a) const {
   const AxisRec& r = rec_[a];
@@ -790,12 +827,13 @@ std::string SimBoard::env(const std::string& line) {
       button_until_us_ = now_us_ + (w[1] == "hold" ? 3'000'000 : 200'000);
     } else if (k == "reboot") {
       need(1);
-      // Power cycle: the drivers and the sensors lose their registers, the FRAM keeps its
-      // contents.
-      for (auto& d : tmc_) d.power_cycle();
-      tmp117_.power_on_reset();
-      gyro_.power_on_reset();
+      power_cycle_parts();
+      powered_off_ = false;
       if (board_) boot();
+    } else if (k == "encoder") {
+      need(2);
+      if (w[1] != "on" && w[1] != "off") throw std::invalid_argument("encoder on|off");
+      encoder_fitted_ = w[1] == "on";
     } else {
       return "err unknown environment command '" + k + "'";
     }

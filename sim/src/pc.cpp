@@ -219,6 +219,7 @@ class Pc {
         if (st.key == "battery") env(*b, "battery " + v(), 0);
         else if (st.key == "charger" || st.key == "usb") env(*b, st.key + (st.word == "plugged" ? " 1" : " 0"), 0);
         else if (st.key == "ble") env(*b, "ble " + st.word, 0);
+        else if (st.key == "encoder") env(*b, "encoder " + st.word, 0);
         else if (st.key == "temperature") env(*b, "temperature " + v(), 0);
         else if (st.key == "pos") env(*b, std::string("pos ") + st.axis + " " + v(), 0);
         else if (st.key == "endstop") env(*b, std::string("endstop_at ") + st.axis + " " + st.word + " " + v(), 0);

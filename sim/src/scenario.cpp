@@ -467,7 +467,7 @@ Scenario parse(std::string_view text, const std::string& file) {
     } else if (kw == "board") {
       Setup st;
       st.line = n;
-      st.key = p.one_of({"battery", "charger", "usb", "ble", "temperature", "pos", "endstop", "param", "fram"},
+      st.key = p.one_of({"battery", "charger", "usb", "ble", "temperature", "pos", "endstop", "encoder", "param", "fram"},
                         "board setting");
       if (st.key == "battery") {
         st.amount = p.quantity(Dim::voltage, "battery voltage", false);
@@ -475,6 +475,8 @@ Scenario parse(std::string_view text, const std::string& file) {
         st.word = p.one_of({"plugged", "unplugged"}, st.key.c_str());
       } else if (st.key == "ble") {
         st.word = p.one_of({"shutdown", "standby", "connected", "session"}, "BLE state");
+      } else if (st.key == "encoder") {
+        st.word = p.one_of({"on", "off"}, "encoder fitted");
       } else if (st.key == "temperature") {
         st.amount = p.quantity(Dim::temperature, "temperature");
       } else if (st.key == "pos") {

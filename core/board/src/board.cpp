@@ -172,6 +172,7 @@ void Board::uart_rx(std::span<const std::uint8_t> bytes) {
 }
 
 void Board::tick() {
+  if (powered_off_) return;  // the KillSwitch is pulled; only a power cycle brings the core back
   ++ticks_;
   param_cycle_ = false;
   frame_this_cycle_ = false;
@@ -182,6 +183,8 @@ void Board::tick() {
   refused_.fill(kNoRefusal);
   path_error_ = path::Error::None;
   begin_of_cycle();
+  if (in_.button && !button_was_ && !off_requested_) request_off();
+  button_was_ = in_.button;
   receive();
   step_axes();
   check_drivers();
@@ -194,6 +197,27 @@ void Board::tick() {
     const Led l = led();
     hw_.led(hw_.ctx, led_lit(l, ticks_) ? l.colour : LedColour::Off);
   }
+  if (off_requested_ && !moving(axes_[0]) && !moving(axes_[1]) && !path_.active()) finish_shutdown();
+}
+
+// Thesis §7.9.5: an off request from the button's controller lets the firmware run a shutdown
+// sequence that may save data to FRAM, then the MCU switches itself off through the KillSwitch.
+// The axes get the ramped stop `sleep` gives (so the counter saved is where the carriage
+// stands), motion is refused from then on, and the sequence ends at the first tick both axes
+// stand (docs/board.md "Button and shutdown").
+void Board::request_off() {
+  off_requested_ = true;
+  (void)on_periph_off(this, Axis::X, 0);
+}
+
+void Board::finish_shutdown() {
+  // The step counters go to FRAM with their validity flag (§7.7.2 "FRAM alternative"): the
+  // next boot starts from them when no encoder answers. A failed save latches its fault and
+  // the unit still switches off: the user asked for it, and the next boot then starts
+  // unhomed (the flag was not written) rather than from a wrong counter.
+  (void)shutdown();
+  powered_off_ = true;
+  if (hw_.power_off != nullptr) hw_.power_off(hw_.ctx);
 }
 
 void Board::begin_of_cycle() {

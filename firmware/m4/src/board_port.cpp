@@ -42,6 +42,7 @@ void sample(void*, board::Inputs& in) {
   in.usb = (w & kExpUsb) != 0;
   in.ble_status1 = (w & kExpBle1) != 0;
   in.ble_status2 = (w & kExpBle2) != 0;
+  in.button = (w & kExpButton) != 0;  // the button controller's off request (docs/board.md)
   for (std::size_t a = 0; a < board::kAxes; ++a) {
     const std::uint8_t zero[4] = {};
     std::uint8_t e[4] = {};

@@ -57,6 +57,7 @@ Env env_of(const board::Inputs& in) {
   e.charge_ma = in.charge_ma;
   e.ble_status1 = in.ble_status1;
   e.ble_status2 = in.ble_status2;
+  e.button = in.button;
   for (std::size_t a = 0; a < kAxes; ++a) {
     e.endstop_min[a] = in.endstop_min[a] != 0;
     e.endstop_max[a] = in.endstop_max[a] != 0;

@@ -275,12 +275,32 @@ void EchoModel::begin_tick(const Env& env) {
     x.started_now = false;
     x.stopped_move_now = false;
   }
+  // docs/board.md "Button and shutdown": the off request is served before the tick's frames.
+  if (env.button && !button_was_ && !off_requested_) {
+    off_requested_ = true;
+    sleep_all();
+  }
+  button_was_ = env.button;
   at_tick_start_ = ax_;
   path_.added = 0;
   events_.clear();
   out_.clear();
   dispatched_this_tick_ = false;
   taken_this_tick_ = false;
+}
+
+// G24: the axes get a ramped stop; motion commands are refused until wake.
+void EchoModel::sleep_all() {
+  sleeping_ = true;
+  path_request_stop(PathStop::User);  // cnc.md "Stops": sleep is a controlled stop
+  for (std::size_t b = 0; b < kAxes; ++b) {
+    supersede(b);
+    Ax& y = ax_[b];
+    if (y.act != Activity::Idle) {
+      y.act = Activity::Braking;
+      y.stop_requested = true;
+    }
+  }
 }
 
 // ---------------------------------------------------------------- receive (§7.5.1 step 3)
@@ -568,17 +588,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
       return;
     }
     case CommandId::PeriphOff:
-      // G24: the axes get a ramped stop; motion commands are refused until wake.
-      sleeping_ = true;
-      path_request_stop(PathStop::User);  // cnc.md "Stops": sleep is a controlled stop
-      for (std::size_t b = 0; b < kAxes; ++b) {
-        supersede(b);
-        Ax& y = ax_[b];
-        if (y.act != Activity::Idle) {
-          y.act = Activity::Braking;
-          y.stop_requested = true;
-        }
-      }
+      sleep_all();
       return;
     case CommandId::PeriphOn: sleeping_ = false; return;
     case CommandId::SaveParams: return;

@@ -145,6 +145,8 @@ class SimBoard {
   static void uart_tx(void* ctx, std::span<const std::uint8_t> bytes);
   static void led_out(void* ctx, board::LedColour lit);
   static void encoder_zero(void* ctx, board::Axis a, std::int64_t counts);
+  static void power_off(void* ctx);
+  void power_cycle_parts();
   static void frame_taken(void* ctx, const frame::CommandFrame& f);
   static bool tmc_spi(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
   static bool tmc_spi_y(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
@@ -255,6 +257,9 @@ class SimBoard {
   // (thesis §7.7.2); 0 until the board programs one (the zero it left the factory with is
   // the screw at carriage 0).
   std::array<std::int64_t, board::kAxes> encoder_offset_{};
+  bool encoder_fitted_ = true;   // "encoder off": no valid reading (the FRAM counter path)
+  bool powered_off_ = false;     // the core pulled the KillSwitch
+  bool button_at_off_ = false;   // the button's level at the last tick while switched off
   // Counts of the screw's angle from carriage 0, before the offset.
   std::int64_t encoder_raw_counts(std::size_t a) const;
   // The image's encoder programming requests of this tick, per axis (QEMU mirror).

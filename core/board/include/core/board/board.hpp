@@ -51,6 +51,9 @@ struct Inputs {
   bool ble_status1 = false;  // STATUS1_IND, STATUS2_IND (Tab. 7-2): (0,1) = Data Session open
   bool ble_status2 = true;
   std::array<axis::EncoderReading, kAxes> encoder{};
+  // The user button's off request (thesis §7.9.5: the button's own controller asks the MCU to
+  // switch off and lets it run a shutdown sequence first); 1 = requested.
+  bool button = false;
 };
 
 // What drives one axis's STEP/DIR/ENA pins for the coming tick: `steps` rising STEP edges at
@@ -82,6 +85,9 @@ struct Hardware {
   // its own memory) so that where it stands now reads `counts` = turns * 16384 + angle from
   // then on. Called once per completed homing (docs/motion.md "Homing and the encoder zero").
   void (*encoder_zero)(void* ctx, Axis axis, std::int64_t counts) = nullptr;
+  // The KillSwitch pin (thesis §7.9.5): cuts the unit's own supply. Called once, at the end of
+  // the shutdown sequence an off request started (docs/board.md "Button and shutdown").
+  void (*power_off)(void* ctx) = nullptr;
   // Each frame that takes a new seq (docs/protocol.md "Delivery": executed, or answered as
   // blocked), once, in order: a trace point for loggers and for the harness's exactly-once check.
   void (*frame_taken)(void* ctx, const frame::CommandFrame& f) = nullptr;
@@ -196,6 +202,10 @@ class Board {
   // Tab. 7-4 from this tick's inputs (core/board/led.hpp).
   Led led() const { return led_pattern(battery_low_, in_.charger, ble_state(in_.ble_status1, in_.ble_status2)); }
   bool sleeping() const { return sleeping_; }
+  // An off request is being served: the axes brake, then the counters are saved and the
+  // KillSwitch is pulled; after that the core does nothing more (powered_off()).
+  bool off_requested() const { return off_requested_; }
+  bool powered_off() const { return powered_off_; }
   bool session_open() const { return session_open_; }
   bool link_alive() const { return axis::link_alive(watchdog_); }
   const axis::State& axis_state(Axis a) const { return axes_[idx(a)]; }
@@ -268,6 +278,8 @@ class Board {
   bool apply_currents();
   bool apply_microsteps();
   void driver_fault(std::size_t i, tmc2130::Error e);
+  void request_off();
+  void finish_shutdown();
   std::int64_t encoder_counts_at(std::int32_t pos) const;
   frame::HandlerStatus refuse(Axis a, codec::CommandId id);
   frame::AxisEcho echo_of(std::size_t i, Block block, std::uint8_t refused) const;
@@ -336,6 +348,11 @@ class Board {
   bool battery_low_ = false;
   bool session_open_ = false;
   bool sleeping_ = false;
+  // A press held through power-up is the one that switched the unit on: an off request needs
+  // the line released first.
+  bool button_was_ = true;
+  bool off_requested_ = false;
+  bool powered_off_ = false;
   bool param_cycle_ = false;
   std::int32_t fault_ = 0;
   axis::LinkWatchdog watchdog_{};

@@ -67,6 +67,7 @@ struct Env {
   bool ble_status2 = true;
   std::array<bool, kAxes> endstop_min{};
   std::array<bool, kAxes> endstop_max{};
+  bool button = false;  // the button controller's off request line (thesis §7.9.5)
 };
 
 // The observed motion of one axis after the tick (the axis core's phase and step counter,
@@ -260,6 +261,11 @@ class EchoModel {
   bool battery_low_ = false;
   bool session_ = false;
   bool sleeping_ = false;
+  // docs/board.md "Button and shutdown": a rising edge of the off request (after a release:
+  // the press that switched the unit on does not count) is a sleep at the start of the tick.
+  bool button_was_ = true;
+  bool off_requested_ = false;
+  void sleep_all();
   std::int32_t fault_ = 0;
   std::uint32_t since_dispatch_ = 0xFFFFFFFFU;  // ticks; starts expired (docs/motion.md §7)
   std::uint16_t last_seq_ = 0;
