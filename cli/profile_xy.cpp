@@ -222,10 +222,11 @@ Profile xy_profile() {
                          "sim/src/scenario.cpp"},
       .size_check = "ci/m4-build",
       .size_tag = "m4",
-      // docs/qemu.md "The gate stage": an absolute move, the BLE pins and the LED, a reversal, an
+      // docs/qemu.md "The gate stage": an absolute move, the BLE pins and the LED, the button's
+      // shutdown and the KillSwitch, a reversal, an
       // endstop, a link loss, a parameter save across a reboot, the IHOLD_IRUN shadow register,
       // and the I2C sensors.
-      .qemu_scenarios = {"absolute_20mm", "ble_led", "manual_reversal", "endstop_hit", "link_loss_jog", "accel_save_reboot", "ihold_irun",
+      .qemu_scenarios = {"absolute_20mm", "ble_led", "shutdown_button", "manual_reversal", "endstop_hit", "link_loss_jog", "accel_save_reboot", "ihold_irun",
                          "sensors"},
   };
 }

@@ -128,7 +128,7 @@ constexpr bool kSettleCheck = false;
 Rig* fresh_rig() {
   static const Rig pristine;
   static Rig rig;
-  static_assert(sizeof(Rig) == 33648, "a Rig member was added or changed: reset it below");
+  static_assert(sizeof(Rig) == 33736, "a Rig member was added or changed: reset it below");
   rig.board.reset();
   rig.fram = pristine.fram;
   rig.tmc = pristine.tmc;
@@ -143,6 +143,7 @@ Rig* fresh_rig() {
   rig.steps_total = pristine.steps_total;
   rig.rotor_256 = pristine.rotor_256;
   rig.kill_switch_pulls = pristine.kill_switch_pulls;
+  rig.charger_enables.clear();
   rig.seq = pristine.seq;
   return &rig;
 }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
 #include <set>
 
 #include "axis_harness.hpp"
@@ -590,4 +591,35 @@ TEST(AxisHoming, HomeWhileMovingFastBrakesPastTheBound) {
   }
   EXPECT_TRUE(failed);
   EXPECT_EQ(s.phase, Phase::Stop);
+}
+
+// docs/motion.md "Homing and the encoder zero": the count programmed into the encoder at the
+// home position gives that position back through eq. 7-2 at the next power-up, for every
+// mechanics with at most REN = 16384 microsteps per turn; above it at most rev / 16384 more.
+RC_GTEST_PROP(AxisEncoderZero, ProgrammedCountReadsBackTheHomePosition, ()) {
+  const auto rev = *rc::gen::inRange<std::int32_t>(1, 256'001);
+  const auto pos = *rc::gen::inRange<std::int32_t>(-1'000'000'000, 1'000'000'001);
+  const std::int64_t c = ap::axis::encoder_counts_for(pos, rev);
+  const ap::axis::StartPosition back = ap::axis::encoder_to_usteps(ap::axis::encoder_reading_at(c), rev);
+  if (back.error != ap::axis::Error::None) {
+    // Only where eq. 7-2's result leaves the counter's range.
+    RC_ASSERT(std::llabs(static_cast<long long>(pos)) + rev / 16384 + 1 > 1'000'000'000LL);
+    return;
+  }
+  if (rev <= 16384) {
+    RC_ASSERT(back.pos == pos);
+  } else {
+    RC_ASSERT(back.pos >= pos);
+    RC_ASSERT(static_cast<std::int64_t>(back.pos) - pos <= rev / 16384);
+  }
+}
+
+TEST(AxisEncoderZero, WorkedValues) {
+  // 3200 usteps a turn (200 x 16): 16000 usteps = 5 turns = 81920 counts; -1600 = -8192.
+  EXPECT_EQ(ap::axis::encoder_counts_for(16000, 3200), 81920);
+  EXPECT_EQ(ap::axis::encoder_counts_for(-1600, 3200), -8192);
+  EXPECT_EQ(ap::axis::encoder_counts_for(0, 3200), 0);
+  const ap::axis::EncoderReading r = ap::axis::encoder_reading_at(-8192);
+  EXPECT_EQ(r.turns, -1);
+  EXPECT_EQ(r.counts, 8192);
 }

@@ -52,6 +52,7 @@ struct Rig {
   // while the power stage is off (TOFF = 0 or DRV_ENN high), CHOPCONF.MRES per edge.
   std::array<std::int64_t, kAxes> rotor_256{};
   int kill_switch_pulls = 0;  // Hardware::power_off calls
+  std::vector<bool> charger_enables;  // Hardware::charger_enable calls, in order
   std::unique_ptr<Board> board;
   std::uint16_t seq = 0;
 
@@ -73,6 +74,7 @@ struct Rig {
     r->rotor_256[i] += r->tmc[i].step(m.steps, m.dir);
   }
   static void kill(void* ctx) { ++static_cast<Rig*>(ctx)->kill_switch_pulls; }
+  static void charger(void* ctx, bool on) { static_cast<Rig*>(ctx)->charger_enables.push_back(on); }
   static void uart(void* ctx, std::span<const std::uint8_t> bytes) {
     Echo e{};
     if (bytes.size() == e.size()) {
@@ -91,6 +93,7 @@ struct Rig {
     hw.motor = &Rig::drive;
     hw.uart_tx = &Rig::uart;
     hw.power_off = &Rig::kill;
+    hw.charger_enable = &Rig::charger;
     return hw;
   }
 
@@ -104,6 +107,7 @@ struct Rig {
   void tick(int n = 1) {
     for (int i = 0; i < n; ++i) {
       tmp117.chip.advance_ms(1);
+      for (auto& d : tmc) d.elapse_us(1000);
       board->tick();
       for (auto& d : tmc) d.clear_log();
       i2c.clear_log();

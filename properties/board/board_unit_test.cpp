@@ -142,6 +142,29 @@ TEST(BoardShutdown, APressHeldThroughPowerUpIsNotAnOffRequest) {
   EXPECT_TRUE(r.board->off_requested());
 }
 
+// docs/board.md "Charger disconnect": the charging circuit is disconnected while the board's
+// TMP117 reads outside 0..45 °C and reconnected 2 °C inside that window.
+TEST(BoardCharger, DisconnectedOutsideTheChargeTemperatureWindow) {
+  Rig r;
+  r.tmp117.chip.set_temperature_mc(25'000);
+  r.boot();
+  r.tick(600);
+  ASSERT_EQ(r.charger_enables, std::vector<bool>{true});
+  const auto settle = [&](std::int32_t mc) {
+    r.tmp117.chip.set_temperature_mc(mc);
+    r.tick(600);  // two conversions and a read
+    return r.board->charging_allowed();
+  };
+  EXPECT_TRUE(settle(45'000));
+  EXPECT_FALSE(settle(45'100));
+  EXPECT_FALSE(settle(44'000));  // not yet 2 °C inside
+  EXPECT_TRUE(settle(43'000));
+  EXPECT_FALSE(settle(-100));
+  EXPECT_FALSE(settle(1'500));
+  EXPECT_TRUE(settle(2'000));
+  EXPECT_EQ(r.charger_enables, (std::vector<bool>{true, false, true, false, true}));
+}
+
 TEST(BoardEcho, EchoIsBuiltAfterTheCommandTookEffect) {
   Rig r;
   r.boot();
@@ -349,6 +372,31 @@ TEST(BoardParams, InvalidParameterIsRefusedAndNothingIsWritten) {
   EXPECT_EQ(r.last_echo()->x.status, S::CommandRefused);
   EXPECT_EQ(r.board->store().sequence(), seq);
   EXPECT_EQ(r.board->store().current(), storage::defaults());
+}
+
+// docs/storage.md "Factory and user parameters": homing_mode 1 (towards the min endstop) is the
+// only mode built; 0 (no homing) and 2 (StallGuard) refuse `home` with a typed refusal.
+TEST(BoardParams, OnlyHomingModeOneHomes) {
+  for (const int mode : {0, 1, 2}) {
+    Rig r;
+    {
+      storage::ParameterStore store(r.fram.bus());
+      (void)store.boot();
+      ASSERT_TRUE(store.set_parameter(static_cast<std::uint8_t>(storage::ParamId::HomingMode), mode).ok());
+    }
+    r.in.endstop_min[0] = 1;
+    r.boot();
+    r.send(C::Home, 0);
+    r.tick();
+    if (mode == 1) {
+      EXPECT_EQ(r.ax(Axis::X).homed, 1);
+      EXPECT_NE(r.last_echo()->x.status, S::CommandRefused);
+    } else {
+      EXPECT_EQ(r.last_echo()->x.status, S::CommandRefused) << mode;
+      EXPECT_EQ(r.last_echo()->x.data, static_cast<std::int32_t>(C::Home)) << mode;
+      EXPECT_EQ(r.ax(Axis::X).homed, 0) << mode;
+    }
+  }
 }
 
 TEST(BoardParams, MotionParametersOnlyAtRestCurrentsAnytime) {

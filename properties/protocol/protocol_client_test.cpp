@@ -243,6 +243,32 @@ TEST(ProtocolDelivery, ACommandOutsideTheTablesIsInvalidAndTakesNoSeq) {
   EXPECT_EQ(cl.next_seq(), 0);
 }
 
+// docs/storage.md "Factory and user parameters" (thesis §7.5.4): the operator's client sends
+// speeds and acceleration; the machine's parameters (pitch, steps, microsteps, currents) only
+// from a client opened for factory work.
+TEST(ProtocolDelivery, FactoryParametersNeedAFactoryClient) {
+  for (const C id : {C::SetPitch, C::SetSteps, C::SetMicrosteps, C::SetIrun, C::SetIhold}) {
+    Client cl;
+    cl.submit({Part::X, {id, 16}}, 0);
+    const auto reps = cl.take_reports();
+    ASSERT_EQ(reps.size(), 1U);
+    EXPECT_EQ(reps[0].outcome, Outcome::Invalid) << c::info(id).key;
+    EXPECT_EQ(cl.queued(), 0U);
+  }
+  for (const C id : {C::SetAccel, C::SetFastSpeed, C::SetSlowSpeed, C::SetStartSpeed}) {
+    Client cl;
+    cl.submit({Part::X, {id, 5000}}, 0);
+    EXPECT_TRUE(cl.take_reports().empty()) << c::info(id).key;
+    EXPECT_EQ(cl.queued(), 1U) << c::info(id).key;
+  }
+  ap::client::Config factory;
+  factory.factory = true;
+  Client cl(factory);
+  cl.submit({Part::X, {C::SetPitch, 4000}}, 0);
+  EXPECT_TRUE(cl.take_reports().empty());
+  EXPECT_EQ(cl.queued(), 1U);
+}
+
 TEST(ProtocolReadable, ParsesTheIssueExampleAndRejectsNonsense) {
   f::CommandFrame fr;
   ASSERT_EQ(ap::client::parse_readable("x=jog:+:fast y=goto:20000 sub=battery", fr), "");

@@ -51,7 +51,9 @@ const char* type_name(FieldType t) {
 
 const char* role_name(Role r) {
   switch (r) {
+    case Role::Factory: return "factory";
     case Role::User: return "user";
+    case Role::Reserved: return "reserved";
     case Role::StepCounter: return "step counter";
     case Role::Meta: return "meta";
   }

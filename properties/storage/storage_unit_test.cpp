@@ -375,7 +375,7 @@ TEST(storage_store, refused_input_writes_nothing) {
     const std::uint8_t id = id_of(e.id);
     const SaveResult lo = store.set_parameter(id, e.min - 1);
     const SaveResult hi = store.set_parameter(id, e.max + 1);
-    const StoreStatus want = e.role == Role::User ? StoreStatus::OutOfRange : StoreStatus::NotSettable;
+    const StoreStatus want = e.role == Role::User || e.role == Role::Factory ? StoreStatus::OutOfRange : StoreStatus::NotSettable;
     EXPECT_EQ(lo.status, want) << e.name;
     EXPECT_EQ(hi.status, want) << e.name;
     EXPECT_EQ(lo.attempts, 0);

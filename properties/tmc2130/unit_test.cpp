@@ -388,3 +388,87 @@ TEST(tmc2130_power_stage, a_power_cycle_switches_the_chopper_off) {
   d.power_cycle();
   EXPECT_FALSE(d.power_stage_on());
 }
+
+// Standstill and current (datasheet 5.5 DRV_STATUS.stst: 2^20 clocks after the last step;
+// 5.2 IHOLD_IRUN / TPOWERDOWN: the current falls from IRUN to IHOLD after TPOWERDOWN * 2^18
+// clocks, one step per IHOLDDELAY * 2^18 clocks), at the 12 MHz nominal clock: 2^20 clocks =
+// 87.4 ms, 2^18 clocks = 21.8 ms.
+namespace {
+chip::Datagram write_reg(std::uint8_t addr, std::uint32_t v) {
+  return {static_cast<std::uint8_t>(0x80 | addr), static_cast<std::uint8_t>(v >> 24), static_cast<std::uint8_t>(v >> 16),
+          static_cast<std::uint8_t>(v >> 8), static_cast<std::uint8_t>(v)};
+}
+}  // namespace
+
+TEST(tmc2130_power_stage, standstill_and_hold_current_after_the_last_step) {
+  ap::model::tmc2130::Device d;
+  (void)d.transfer(write_chopconf(0x04000003u));
+  (void)d.transfer(write_reg(0x10, (6u << 16) | (16u << 8) | 8u));  // IHOLDDELAY 6, IRUN 16, IHOLD 8
+  (void)d.transfer(write_reg(0x11, 10u));                             // TPOWERDOWN 10
+  EXPECT_TRUE(d.standstill());  // nothing stepped since power-up
+  (void)d.step(5, 1);
+  EXPECT_FALSE(d.standstill());
+  EXPECT_EQ(d.current_scale(), 16);
+  d.elapse_us(87'000);
+  EXPECT_FALSE(d.standstill());
+  d.elapse_us(1'000);
+  EXPECT_TRUE(d.standstill());  // 88 ms > 87.4 ms
+  d.elapse_us(130'000);         // 218 ms: TPOWERDOWN (218.45 ms) not yet over
+  EXPECT_EQ(d.current_scale(), 16);
+  d.elapse_us(1'000);           // 219 ms: the first step down
+  EXPECT_EQ(d.current_scale(), 15);
+  d.elapse_us(130'000);         // 349 ms: 130.6 ms into the fall, one IHOLDDELAY period is 131.1 ms
+  EXPECT_EQ(d.current_scale(), 15);
+  d.elapse_us(1'000);           // 350 ms: 131.6 ms in, the second step down
+  EXPECT_EQ(d.current_scale(), 14);
+  d.elapse_us(2'000'000);
+  EXPECT_EQ(d.current_scale(), 8);  // IHOLD, no lower
+  // DRV_STATUS reads stst and CS_ACTUAL (bits 20..16).
+  EXPECT_EQ(d.chip_register(chip::Reg::DRV_STATUS), 0x80000000u | (8u << 16));
+  (void)d.step(1, 1);
+  EXPECT_EQ(d.chip_register(chip::Reg::DRV_STATUS), 16u << 16);
+}
+
+TEST(tmc2130_power_stage, overtemperature_and_a_short_switch_the_bridges_off) {
+  ap::model::tmc2130::Device d;
+  (void)d.transfer(write_chopconf(0x00000003u));
+  d.set_input(Reg::DRV_STATUS, 1u << 25);  // ot
+  EXPECT_FALSE(d.power_stage_on());
+  d.set_input(Reg::DRV_STATUS, 0);
+  EXPECT_TRUE(d.power_stage_on());         // ot clears with the temperature
+  d.set_input(Reg::DRV_STATUS, 1u << 27);  // s2ga
+  d.set_input(Reg::DRV_STATUS, 0);
+  EXPECT_FALSE(d.power_stage_on()) << "a short stays latched";
+  EXPECT_EQ(d.step(4, 1), 0);
+  (void)d.transfer(write_chopconf(0x00000000u));  // TOFF = 0 clears it
+  (void)d.transfer(write_chopconf(0x00000003u));
+  EXPECT_TRUE(d.power_stage_on());
+  d.set_input(Reg::DRV_STATUS, 1u << 28);  // s2gb, cleared by DRV_ENN this time
+  d.set_input(Reg::DRV_STATUS, 0);
+  d.set_drv_enn(true);
+  (void)d.step(0, 1);
+  d.set_drv_enn(false);
+  EXPECT_TRUE(d.power_stage_on());
+}
+
+TEST(tmc2130_power_stage, diag_outputs_follow_gconf) {
+  ap::model::tmc2130::Device d;
+  d.set_input(Reg::DRV_STATUS, (1u << 26) | (1u << 24));  // otpw, stallGuard
+  EXPECT_FALSE(d.diag0_asserted());
+  EXPECT_FALSE(d.diag1_asserted());
+  EXPECT_TRUE(d.diag0_level());  // open drain, released: high
+  (void)d.transfer(write_reg(0x00, (1u << 6) | (1u << 8)));  // diag0_otpw, diag1_stall
+  EXPECT_TRUE(d.diag0_asserted());
+  EXPECT_TRUE(d.diag1_asserted());
+  EXPECT_FALSE(d.diag0_level());  // active low
+  EXPECT_FALSE(d.diag1_level());
+  (void)d.transfer(write_reg(0x00, (1u << 6) | (1u << 8) | (1u << 12) | (1u << 13)));  // push-pull: active high
+  EXPECT_TRUE(d.diag0_level());
+  EXPECT_TRUE(d.diag1_level());
+  d.set_input(Reg::DRV_STATUS, 0);
+  EXPECT_FALSE(d.diag0_asserted());
+  EXPECT_FALSE(d.diag1_asserted());
+  (void)d.transfer(write_reg(0x00, 1u << 5));  // diag0_error
+  d.set_input(Reg::DRV_STATUS, 1u << 25);      // ot
+  EXPECT_TRUE(d.diag0_asserted());
+}

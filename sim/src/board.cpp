@@ -169,6 +169,7 @@ void SimBoard::boot() {
   hw.led = &SimBoard::led_out;
   hw.encoder_zero = &SimBoard::encoder_zero;
   hw.power_off = &SimBoard::power_off;
+  hw.charger_enable = &SimBoard::charger_enable;
   hw.frame_taken = &SimBoard::frame_taken;
   checker_.reset();   // it refers to the board it was made for
   board_ = std::make_unique<board::Board>(hw);
@@ -250,7 +251,8 @@ void SimBoard::fill_inputs(board::Inputs& in) {
   in.battery_mv = battery_mv_;
   // Power module: charging current positive, discharge negative (more while a motor runs).
   const bool running = out_[0].steps != 0 || out_[1].steps != 0;
-  in.charge_ma = charger_ || usb_ ? 500 : (running ? -650 : -120);
+  // The board's charger enable (Hardware::charger_enable) gates the charging current.
+  in.charge_ma = (charger_ || usb_) && charging_enabled_ ? 500 : (running ? -650 : -120);
   switch (ble_) {   // Tab. 7-2: (STATUS1_IND, STATUS2_IND)
     case Ble::Shutdown: in.ble_status1 = true; in.ble_status2 = true; break;
     case Ble::Standby: in.ble_status1 = true; in.ble_status2 = false; break;
@@ -520,6 +522,7 @@ void SimBoard::tick() {
   const std::uint64_t samples = samples_;
   sensors_tick();
   if (on_qemu()) qemu_tick();
+  for (auto& d : tmc_) d.elapse_us(axis::kTickUs);
   board_->tick();
   if (on_qemu()) qemu_after_tick(false);
   for (auto& d : tmc_) d.clear_log();
@@ -656,8 +659,16 @@ void SimBoard::power_cycle_parts() {
   gyro_.power_on_reset();
 }
 
+void SimBoard::charger_enable(void* ctx, bool on) {
+  auto* s = static_cast<SimBoard*>(ctx);
+  // On the QEMU target the image drives the pin in the same tick; it must say the same.
+  if (s->on_qemu() && s->image_charger_ != on) s->qemu_fail(std::string("charger enable: image ") + (s->image_charger_ ? "on" : "off"));
+  s->charging_enabled_ = on;
+}
+
 void SimBoard::power_off(void* ctx) {
   auto* s = static_cast<SimBoard*>(ctx);
+  if (s->on_qemu() && !s->image_kill_) s->qemu_fail("KillSwitch: the host core pulled it, the image did not");
   s->powered_off_ = true;
   s->button_at_off_ = true;
 }

@@ -67,6 +67,8 @@ void SimBoard::qemu_start() {
   image_tx_pos_ = 0;
   image_motor_ = {};
   image_encoder_zero_ = {};
+  image_kill_ = false;
+  image_charger_ = true;
   image_olat_b_ = 0xC0;
   image_iodir_b_ = 0xFF;
   link_delivered_ = 0;
@@ -220,8 +222,16 @@ void SimBoard::qemu_answer(const QemuImage::Message& m) {
       return;
     }
     case Kind::PinWrite:
-      need(p.size() == 2 && p[0] <= 1, "pin");
-      image_motor_[p[0]].dir = p[1] != 0;
+      need(p.size() == 2 && (p[0] <= 1 || p[0] == static_cast<std::uint8_t>(cosim::Pin::KillSwitch) ||
+                             p[0] == static_cast<std::uint8_t>(cosim::Pin::ChargerEnable)),
+           "pin");
+      if (p[0] == static_cast<std::uint8_t>(cosim::Pin::KillSwitch)) {
+        image_kill_ = p[1] != 0;
+      } else if (p[0] == static_cast<std::uint8_t>(cosim::Pin::ChargerEnable)) {
+        image_charger_ = p[1] != 0;
+      } else {
+        image_motor_[p[0]].dir = p[1] != 0;
+      }
       return;
     case Kind::Step: {
       need(p.size() == 9 && p[0] <= 1, "step timer");

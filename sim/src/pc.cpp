@@ -104,6 +104,7 @@ class Pc {
       client::Config cc;
       cc.keepalive_us = s.period_us;
       cc.first_seq = s.first_seq;
+      cc.factory = true;  // the simulated PC is a developer's tool: it sets the machine up too
       pc->client = std::make_unique<client::Client>(cc);
       pc->down = std::make_unique<FaultLink>(s.faults, sc::Direction::to_board, s.seed * 1'000'003ULL + b * 2ULL);
       pc->up = std::make_unique<FaultLink>(s.faults, sc::Direction::to_pc, s.seed * 1'000'003ULL + b * 2ULL + 1ULL);

@@ -418,14 +418,7 @@ void Board::step_axes() {
 }
 
 std::int64_t Board::encoder_counts_at(std::int32_t pos) const {
-  // The encoder count that eq. 7-2 turns back into `pos`: the smallest c with
-  // floor(c * rev / 16384) >= pos. With rev <= 16384 microsteps per turn every position has
-  // one; above that a position between two encoder counts comes back as the next one up
-  // (at most rev / 16384 microsteps off).
-  const std::int64_t rev = static_cast<std::int64_t>(axis::usteps_per_rev(derived_.mech));
-  const std::int64_t n = static_cast<std::int64_t>(pos) * axis::kEncoderCounts;
-  // Ceiling division for either sign; |pos| <= kPosMax < 2^31, so |n| < 2^45.
-  return n >= 0 ? (n + rev - 1) / rev : -((-n) / rev);
+  return axis::encoder_counts_for(pos, static_cast<std::int32_t>(axis::usteps_per_rev(derived_.mech)));
 }
 
 void Board::check_drivers() {
@@ -484,6 +477,12 @@ void Board::configure_gyro() {
 void Board::read_sensors() {
   read_gyro();
   read_temperature();
+  const bool allowed = board::charging_allowed(charging_, sensors_.temperature_valid, temperature_mc_);
+  if (allowed != charging_ || !charging_told_) {
+    charging_ = allowed;
+    charging_told_ = true;
+    if (hw_.charger_enable != nullptr) hw_.charger_enable(hw_.ctx, allowed);
+  }
 }
 
 void Board::read_gyro() {
@@ -761,6 +760,10 @@ HandlerStatus Board::position_relative(Axis a, c::CommandId id, std::int32_t um,
 HandlerStatus Board::on_home(void* ctx, Axis a, std::int32_t) {
   auto* b = static_cast<Board*>(ctx);
   if (b->path_.active()) return b->refuse(a, c::CommandId::Home);  // the path holds both axes
+  // Homing mode 1 (towards the min endstop) is the only one built: 0 means the platform has no
+  // homing, 2 (StallGuard) needs a calibration the thesis does not give and a DIAG1 input the
+  // board does not read (docs/storage.md "Factory and user parameters").
+  if (b->store_.current().homing_mode != kHomingModeEndstop) return b->refuse(a, c::CommandId::Home);
   if (!b->motion_permitted()) return b->refuse(a, c::CommandId::Home);
   return b->set_axis_command(a, c::CommandId::Home, {axis::CmdKind::Home, 0, 0, 0});
 }

@@ -97,7 +97,7 @@ SaveResult ParameterStore::save(const ParameterSet& next) noexcept {
 SaveResult ParameterStore::set_parameter(std::uint8_t id, std::int64_t value) noexcept {
   if (id >= kItemCount) return {StoreStatus::UnknownId, 0, ParamId::Crc};
   const ParamId pid = static_cast<ParamId>(id);
-  if (entry(pid).role != Role::User) return {StoreStatus::NotSettable, 0, pid};
+  if (entry(pid).role != Role::User && entry(pid).role != Role::Factory) return {StoreStatus::NotSettable, 0, pid};
   switch (check_item(pid, value)) {
     case ValidationError::None: break;
     case ValidationError::NotPowerOfTwo: return {StoreStatus::NotPowerOfTwo, 0, pid};

@@ -101,6 +101,9 @@ void encoder_zero(void*, board::Axis ax, std::int64_t counts) {
   (void)spi_transfer(ax == board::Axis::X ? SpiDevice::EncoderX : SpiDevice::EncoderY, mosi, miso, sizeof mosi);
 }
 
+void power_off(void*) { pin_write(Pin::KillSwitch, true); }
+void charger_enable(void*, bool on) { pin_write(Pin::ChargerEnable, on); }
+
 void uart_tx(void*, std::span<const std::uint8_t> bytes) {
   link_send(bytes.data(), bytes.size());
   tx_count = static_cast<std::uint16_t>(tx_count + bytes.size());
@@ -124,6 +127,8 @@ board::Hardware board_hardware() {
   hw.uart_tx = &uart_tx;
   hw.led = &led;
   hw.encoder_zero = &encoder_zero;
+  hw.power_off = &power_off;
+  hw.charger_enable = &charger_enable;
   return hw;
 }
 

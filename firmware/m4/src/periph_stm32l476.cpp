@@ -64,6 +64,7 @@ constexpr SpiSlave kSpi[cosim::kSpiDevices] = {
     /* Expander */ {pc(9), 3, 3, 1},
 };
 constexpr Gpio kDir[2] = {pb(0), pb(1)};
+constexpr Gpio kKillSwitch = pb(2), kChargerEnable = pb(3);
 constexpr Gpio kStep[2] = {pa(0), pc(6)};
 constexpr std::uint32_t kStepAf[2] = {1, 2};
 constexpr Gpio kUsartTx = pa(9), kUsartRx = pa(10);
@@ -359,6 +360,11 @@ void step_stop(std::size_t axis) {
 }
 
 void step_init() {
+  // The supply held (KillSwitch low) and the charger connected until the core says otherwise.
+  gpio_set(kKillSwitch, false);
+  gpio_mode(kKillSwitch, kModeOut);
+  gpio_set(kChargerEnable, true);
+  gpio_mode(kChargerEnable, kModeOut);
   for (std::size_t a = 0; a < 2; ++a) {
     gpio_set(kDir[a], false);
     gpio_mode(kDir[a], kModeOut);
@@ -531,9 +537,11 @@ std::uint16_t adc_read(AdcChannel ch) {
 
 void pin_write(Pin pin, bool level) {
   // ENA and the BLE status lines are on the GPIO expander (seed-000.md §1), driven through
-  // spi_transfer by the board port; only DIR is an MCU pin.
+  // spi_transfer by the board port; DIR, the KillSwitch and the charger enable are MCU pins.
   if (pin == Pin::DirX) gpio_set(kDir[0], level);
   if (pin == Pin::DirY) gpio_set(kDir[1], level);
+  if (pin == Pin::KillSwitch) gpio_set(kKillSwitch, level);
+  if (pin == Pin::ChargerEnable) gpio_set(kChargerEnable, level);
 }
 
 // The pulse train is counted by the update interrupt, one per pulse (the thesis's choice, seed

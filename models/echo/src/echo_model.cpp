@@ -130,6 +130,7 @@ EchoModel::EchoModel(const Boot& boot) {
     n.slow = static_cast<std::int32_t>(f.slow_speed_um_s);
     n.start = static_cast<std::int32_t>(f.start_speed_um_s);
     n.homing = static_cast<std::int32_t>(f.homing_speed_um_s);
+    n.homing_mode = f.homing_mode;
     n.pitch = static_cast<std::int32_t>(f.lead_pitch_um);
     n.steps = f.steps_per_rev;
     n.micro = f.microsteps;
@@ -433,12 +434,12 @@ bool EchoModel::converts(const Params& p, std::string& why) {
   // configs is refused; docs/motion.md §2 and §10 give the ranges and the rounding.
   const std::int64_t num = static_cast<std::int64_t>(p.steps) * p.micro;
   const auto conv = [&](std::int64_t um) { return div_round_nearest(um * num, p.pitch); };
-  const std::int64_t v_fast = conv(p.fast), v_slow = conv(p.slow), v_home = conv(p.homing);
+  const std::int64_t v_fast = conv(p.fast), v_slow = conv(p.slow);
   std::int64_t v_start = conv(p.start);
   if (v_start < 1) v_start = 1;  // board.md: a start speed of 0 um/s starts at 1 ustep/s
   const std::int64_t acc = conv(p.accel);
-  if (v_fast > kSpeedMax || v_slow > kSpeedMax || v_home > kSpeedMax) return why = "speed above 1e6 usteps/s", false;
-  if (!(v_start <= v_slow && v_slow <= v_fast && v_home <= v_fast)) {
+  if (v_fast > kSpeedMax || v_slow > kSpeedMax) return why = "speed above 1e6 usteps/s", false;
+  if (!(v_start <= v_slow && v_slow <= v_fast)) {
     return why = "speeds out of order in usteps", false;
   }
   if (acc < 1 || acc > kAccelMax) return why = "acceleration outside [1, 1e7] usteps/s^2", false;
@@ -455,7 +456,7 @@ bool EchoModel::converts(const Params& p, std::string& why) {
 
 bool EchoModel::set_param(CommandId id, std::int32_t d, std::string& why) {
   // docs/board.md "Parameters and units": range and rule (storage map) -> cross rules
-  // (start <= slow <= fast, homing <= fast) -> conversion -> both axes at rest (every
+  // (start <= slow <= fast) -> conversion -> both axes at rest (every
   // parameter except the two currents) -> save -> apply.
   if (id == CommandId::SetIrun) return p_.irun = d, true;
   if (id == CommandId::SetIhold) return p_.ihold = d, true;
@@ -481,7 +482,7 @@ bool EchoModel::set_param(CommandId id, std::int32_t d, std::string& why) {
       break;
     default: return why = "not a parameter", false;
   }
-  if (!(n.start <= n.slow && n.slow <= n.fast && n.homing <= n.fast)) return why = "cross rule", false;
+  if (!(n.start <= n.slow && n.slow <= n.fast)) return why = "cross rule", false;
   if (!converts(n, why)) return false;
   const bool mechanics = id == CommandId::SetPitch || id == CommandId::SetSteps || id == CommandId::SetMicrosteps;
   if (any_moving(mechanics)) return why = "an axis moves", false;
@@ -564,6 +565,7 @@ void EchoModel::dispatch(frame::Axis axis, CommandId id, std::int32_t d) {
     case CommandId::Home:
       if (sleeping_) return refuse(a, id, "sleeping");
       if (path_.running) return refuse(a, id, "a path is active");  // cnc.md "Refusals"
+      if (p_.homing_mode != 1) return refuse(a, id, "homing mode not 1");  // docs/storage.md
       start(Activity::Home);
       if (x.last.phase == Phase::Stop && (env_.endstop_min[a] || x.latch_min)) {
         // motion.md §6: resting on the (active or latched) min switch is the reference point.

@@ -1,6 +1,7 @@
 #include "models/icm20789/device.hpp"
 
 #include <algorithm>
+#include <array>
 
 namespace ap::model::icm20789 {
 
@@ -22,15 +23,23 @@ bool Device::awake() const {
   return (p & chip::bits::kSleep) == 0 && (p & chip::bits::kClkselMask) != 7;
 }
 
+namespace {
+// Stated here from the datasheet, not taken from core/icm20789 (a firmware that misread them
+// must not find the model agreeing): DS-000169 GYRO_CONFIG (0x1B) FS_SEL = bits 4:3, and
+// Table 1's gyro sensitivity per FS_SEL, in tenths of an LSB per °/s: 131, 65.5, 32.8, 16.4.
+constexpr unsigned kFsSelShift = 3;
+constexpr std::uint8_t kFsSelMask = 0x18;
+constexpr std::array<std::int32_t, 4> kTenthLsbPerDps{1310, 655, 328, 164};
+}  // namespace
+
 chip::FullScale Device::full_scale() const {
-  return static_cast<chip::FullScale>((regs_[r::kGyroConfig] & chip::bits::kFsSelMask) >> chip::bits::kFsSelShift);
+  return static_cast<chip::FullScale>((regs_[r::kGyroConfig] & kFsSelMask) >> kFsSelShift);
 }
 
 std::int16_t Device::code_for_mdps(std::int32_t mdps, chip::FullScale fs) {
-  // code = mdps / 1000 * num / den, nearest, halves away from zero, then the ADC's limits.
-  const auto s = chip::sensitivity(fs);
-  const std::int64_t n = std::int64_t{mdps} * s.num;
-  const std::int64_t d = std::int64_t{1000} * s.den;
+  // code = mdps / 1000 * tenths / 10, nearest, halves away from zero, then the ADC's limits.
+  const std::int64_t n = std::int64_t{mdps} * kTenthLsbPerDps[static_cast<std::size_t>(fs) & 3U];
+  const std::int64_t d = std::int64_t{10'000};
   const std::int64_t a = n < 0 ? -n : n;
   const std::int64_t q = a / d + ((a % d) * 2 >= d ? 1 : 0);
   return static_cast<std::int16_t>(std::clamp<std::int64_t>(n < 0 ? -q : q, -32768, 32767));

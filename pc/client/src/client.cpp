@@ -46,6 +46,12 @@ bool moves_axis(c::CommandId id) {
          id == c::CommandId::MoveSlow || id == c::CommandId::Home || id == c::CommandId::Jog;
 }
 
+// docs/storage.md "Factory and user parameters": the commands that set a factory item.
+bool sets_factory_parameter(c::CommandId id) {
+  return id == c::CommandId::SetPitch || id == c::CommandId::SetSteps || id == c::CommandId::SetMicrosteps ||
+         id == c::CommandId::SetIrun || id == c::CommandId::SetIhold;
+}
+
 bool is_stop(const Command& cmd) { return cmd.part != Part::Unit && cmd.cmd.id == c::CommandId::Stop; }
 
 bool blocked_status(c::EchoStatus s) {
@@ -72,7 +78,7 @@ Ticket Client::submit(const Command& cmd, std::int64_t now_us) {
   // A command the tables do not admit is refused here, before it can take a seq.
   frame::CommandFrame probe;
   (cmd.part == Part::Y ? probe.y : probe.x) = cmd.cmd;
-  if (!format(probe)) {
+  if (!format(probe) || (sets_factory_parameter(cmd.cmd.id) && !cfg_.factory)) {
     report(p, Outcome::Invalid, now_us, nullptr, nullptr);
     return p.ticket;
   }

@@ -146,6 +146,7 @@ class SimBoard {
   static void led_out(void* ctx, board::LedColour lit);
   static void encoder_zero(void* ctx, board::Axis a, std::int64_t counts);
   static void power_off(void* ctx);
+  static void charger_enable(void* ctx, bool on);
   void power_cycle_parts();
   static void frame_taken(void* ctx, const frame::CommandFrame& f);
   static bool tmc_spi(void* ctx, const tmc2130::Datagram& tx, tmc2130::Datagram& rx);
@@ -259,11 +260,14 @@ class SimBoard {
   std::array<std::int64_t, board::kAxes> encoder_offset_{};
   bool encoder_fitted_ = true;   // "encoder off": no valid reading (the FRAM counter path)
   bool powered_off_ = false;     // the core pulled the KillSwitch
+  bool charging_enabled_ = true; // the core's charger enable (docs/board.md "Charger disconnect")
   bool button_at_off_ = false;   // the button's level at the last tick while switched off
   // Counts of the screw's angle from carriage 0, before the offset.
   std::int64_t encoder_raw_counts(std::size_t a) const;
   // The image's encoder programming requests of this tick, per axis (QEMU mirror).
   std::array<std::optional<std::int64_t>, board::kAxes> image_encoder_zero_{};
+  bool image_kill_ = false;      // the image's KillSwitch pin
+  bool image_charger_ = true;    // the image's charger enable pin
   std::uint16_t expander_last_ = 0xFFFF;
 
   // Outputs and monitors.

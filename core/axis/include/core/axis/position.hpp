@@ -62,6 +62,22 @@ struct StartPosition {
   return {0, 0, Error::NotHomed};
 }
 
+// The encoder count (turns * REN + angle) that eq. 7-2 turns back into `pos`: the smallest c
+// with floor(c * rev / REN) >= pos, so encoder_to_usteps() of it gives `pos` exactly when
+// rev <= REN and at most rev / REN microsteps more above (docs/motion.md "Homing and the encoder
+// zero"). |pos| <= kPosMax, 1 <= usteps_rev <= 256000: |pos * REN| < 2^45, int64.
+[[nodiscard]] constexpr int64_t encoder_counts_for(int32_t pos, int32_t usteps_rev) {
+  const int64_t rev = usteps_rev;
+  const int64_t n = static_cast<int64_t>(pos) * kEncoderCounts;
+  return n >= 0 ? (n + rev - 1) / rev : -((-n) / rev);
+}
+
+// The reading an encoder gives at `counts` (turns * REN + angle, floor division).
+[[nodiscard]] constexpr EncoderReading encoder_reading_at(int64_t counts) {
+  const int64_t turns = counts >= 0 ? counts / kEncoderCounts : -((-counts + kEncoderCounts - 1) / kEncoderCounts);
+  return {static_cast<int32_t>(turns), static_cast<uint16_t>(counts - turns * kEncoderCounts), 1};
+}
+
 [[nodiscard]] constexpr State initial_state(const StartPosition& p) {
   State s{};
   s.pos = p.pos;

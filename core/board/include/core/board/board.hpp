@@ -27,6 +27,7 @@
 #include "core/icm20789/driver.hpp"
 #include "core/icm20789/rotation.hpp"
 #include "core/path/executor.hpp"
+#include "core/board/charging.hpp"
 #include "core/board/led.hpp"
 #include "core/storage/store.hpp"
 #include "core/tmc2130/driver.hpp"
@@ -88,6 +89,9 @@ struct Hardware {
   // The KillSwitch pin (thesis §7.9.5): cuts the unit's own supply. Called once, at the end of
   // the shutdown sequence an off request started (docs/board.md "Button and shutdown").
   void (*power_off)(void* ctx) = nullptr;
+  // The charging circuit's enable (thesis §7.9.3): called at the first tick and on every
+  // change (core/board/charging.hpp).
+  void (*charger_enable)(void* ctx, bool on) = nullptr;
   // Each frame that takes a new seq (docs/protocol.md "Delivery": executed, or answered as
   // blocked), once, in order: a trace point for loggers and for the harness's exactly-once check.
   void (*frame_taken)(void* ctx, const frame::CommandFrame& f) = nullptr;
@@ -123,6 +127,7 @@ inline constexpr std::int32_t kFaultBadParams = 4000;   // loaded set does not c
 inline constexpr std::int32_t kFaultTemperature = 5000; // + tmp117::Error (docs/sensors.md)
 inline constexpr std::int32_t kFaultGyro = 6000;        // + icm20789::Error
 
+inline constexpr std::uint8_t kHomingModeEndstop = 1;   // FRAM homing_mode: towards the min endstop
 inline constexpr std::uint16_t kBatteryHysteresisMv = 100;  // G23: unblock at threshold + 100 mV
 inline constexpr std::size_t kRxCapacity = 256;             // > 6 command frames
 inline constexpr std::size_t kMaxEchoesPerCycle = 4;
@@ -206,6 +211,7 @@ class Board {
   // KillSwitch is pulled; after that the core does nothing more (powered_off()).
   bool off_requested() const { return off_requested_; }
   bool powered_off() const { return powered_off_; }
+  bool charging_allowed() const { return charging_; }
   bool session_open() const { return session_open_; }
   bool link_alive() const { return axis::link_alive(watchdog_); }
   const axis::State& axis_state(Axis a) const { return axes_[idx(a)]; }
@@ -353,6 +359,8 @@ class Board {
   bool button_was_ = true;
   bool off_requested_ = false;
   bool powered_off_ = false;
+  bool charging_ = true;
+  bool charging_told_ = false;  // the charger enable was driven at least once since boot
   bool param_cycle_ = false;
   std::int32_t fault_ = 0;
   axis::LinkWatchdog watchdog_{};

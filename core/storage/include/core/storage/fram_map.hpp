@@ -55,9 +55,15 @@ inline constexpr std::size_t kItemCount = 26;
 
 enum class FieldType : std::uint8_t { U8, I8, U16, U32, I32 };
 
-// Who may change an item: the user through set_parameter(), the step-counter protocol
-// (begin_motion / record_shutdown), or only the record machinery itself.
-enum class Role : std::uint8_t { User, StepCounter, Meta };
+// Who may change an item (thesis §7.5.4: "výrobné a užívateľské parametre", factory and user
+// parameters; docs/storage.md "Factory and user parameters"): factory items describe the
+// machine (screw, motor, driver currents, limits, homing) and are set by whoever builds the
+// platform; user items are the motion settings an operator changes (speeds, acceleration).
+// Both change through set_parameter(); the PC client sends a factory item only when opened
+// for factory work. Step-counter items change through begin_motion / record_shutdown; meta
+// items belong to the record; reserved items keep their slot in the layout and are never read
+// or changed (the reason is in docs/storage.md).
+enum class Role : std::uint8_t { Factory, User, StepCounter, Meta, Reserved };
 
 // Extra rule on top of [min, max]; TMC2130 MRES only encodes powers of two.
 enum class Rule : std::uint8_t { Range, PowerOfTwo };
@@ -89,22 +95,22 @@ inline constexpr std::array<MapEntry, kItemCount> kItemMap{{
     {ParamId::FastSpeed, "fast_speed", 0x04, 4, FieldType::U32, Role::User, Rule::Range, 10000, 1, kWireMax, "um/s"},
     {ParamId::SlowSpeed, "slow_speed", 0x08, 4, FieldType::U32, Role::User, Rule::Range, 2000, 1, kWireMax, "um/s"},
     {ParamId::StartSpeed, "start_speed", 0x0C, 4, FieldType::U32, Role::User, Rule::Range, 500, 0, kWireMax, "um/s"},
-    {ParamId::LeadPitch, "lead_pitch", 0x10, 4, FieldType::U32, Role::User, Rule::Range, 2000, 100, 100'000, "um"},
-    {ParamId::StepsPerRev, "steps_per_rev", 0x14, 2, FieldType::U16, Role::User, Rule::Range, 200, 1, 1000, "steps"},
-    {ParamId::Microsteps, "microsteps", 0x16, 2, FieldType::U16, Role::User, Rule::PowerOfTwo, 16, 1, 256, "usteps/step"},
-    {ParamId::RunCurrent, "run_current", 0x18, 1, FieldType::U8, Role::User, Rule::Range, 16, 0, 31, "CS"},
-    {ParamId::HoldCurrent, "hold_current", 0x19, 1, FieldType::U8, Role::User, Rule::Range, 8, 0, 31, "CS"},
-    {ParamId::HomingMode, "homing_mode", 0x1A, 1, FieldType::U8, Role::User, Rule::Range, 1, 0, 2, "enum"},
-    {ParamId::StallGuardThreshold, "stallguard_threshold", 0x1B, 1, FieldType::I8, Role::User, Rule::Range, 0, -64, 63, "SGT"},
-    {ParamId::SoftMinX, "soft_min_x", 0x1C, 4, FieldType::I32, Role::User, Rule::Range, 0, -kWireMax, kWireMax, "um"},
-    {ParamId::SoftMaxX, "soft_max_x", 0x20, 4, FieldType::I32, Role::User, Rule::Range, 200'000, -kWireMax, kWireMax, "um"},
-    {ParamId::SoftMinY, "soft_min_y", 0x24, 4, FieldType::I32, Role::User, Rule::Range, 0, -kWireMax, kWireMax, "um"},
-    {ParamId::SoftMaxY, "soft_max_y", 0x28, 4, FieldType::I32, Role::User, Rule::Range, 200'000, -kWireMax, kWireMax, "um"},
-    {ParamId::HomingSpeed, "homing_speed", 0x2C, 4, FieldType::U32, Role::User, Rule::Range, 2000, 1, kWireMax, "um/s"},
-    {ParamId::HomingBackoff, "homing_backoff", 0x30, 4, FieldType::U32, Role::User, Rule::Range, 1000, 0, 100'000, "um"},
-    {ParamId::HomeOffsetX, "home_offset_x", 0x34, 4, FieldType::I32, Role::User, Rule::Range, 0, -kWireMax, kWireMax, "um"},
-    {ParamId::HomeOffsetY, "home_offset_y", 0x38, 4, FieldType::I32, Role::User, Rule::Range, 0, -kWireMax, kWireMax, "um"},
-    {ParamId::LowBatteryMv, "low_battery", 0x3C, 2, FieldType::U16, Role::User, Rule::Range, 3300, 2500, 30000, "mV"},
+    {ParamId::LeadPitch, "lead_pitch", 0x10, 4, FieldType::U32, Role::Factory, Rule::Range, 2000, 100, 100'000, "um"},
+    {ParamId::StepsPerRev, "steps_per_rev", 0x14, 2, FieldType::U16, Role::Factory, Rule::Range, 200, 1, 1000, "steps"},
+    {ParamId::Microsteps, "microsteps", 0x16, 2, FieldType::U16, Role::Factory, Rule::PowerOfTwo, 16, 1, 256, "usteps/step"},
+    {ParamId::RunCurrent, "run_current", 0x18, 1, FieldType::U8, Role::Factory, Rule::Range, 16, 0, 31, "CS"},
+    {ParamId::HoldCurrent, "hold_current", 0x19, 1, FieldType::U8, Role::Factory, Rule::Range, 8, 0, 31, "CS"},
+    {ParamId::HomingMode, "homing_mode", 0x1A, 1, FieldType::U8, Role::Factory, Rule::Range, 1, 0, 2, "enum"},
+    {ParamId::StallGuardThreshold, "stallguard_threshold", 0x1B, 1, FieldType::I8, Role::Factory, Rule::Range, 0, -64, 63, "SGT"},
+    {ParamId::SoftMinX, "soft_min_x", 0x1C, 4, FieldType::I32, Role::Factory, Rule::Range, 0, -kWireMax, kWireMax, "um"},
+    {ParamId::SoftMaxX, "soft_max_x", 0x20, 4, FieldType::I32, Role::Factory, Rule::Range, 200'000, -kWireMax, kWireMax, "um"},
+    {ParamId::SoftMinY, "soft_min_y", 0x24, 4, FieldType::I32, Role::Factory, Rule::Range, 0, -kWireMax, kWireMax, "um"},
+    {ParamId::SoftMaxY, "soft_max_y", 0x28, 4, FieldType::I32, Role::Factory, Rule::Range, 200'000, -kWireMax, kWireMax, "um"},
+    {ParamId::HomingSpeed, "homing_speed", 0x2C, 4, FieldType::U32, Role::Reserved, Rule::Range, 2000, 1, kWireMax, "um/s"},
+    {ParamId::HomingBackoff, "homing_backoff", 0x30, 4, FieldType::U32, Role::Reserved, Rule::Range, 1000, 0, 100'000, "um"},
+    {ParamId::HomeOffsetX, "home_offset_x", 0x34, 4, FieldType::I32, Role::Factory, Rule::Range, 0, -kWireMax, kWireMax, "um"},
+    {ParamId::HomeOffsetY, "home_offset_y", 0x38, 4, FieldType::I32, Role::Factory, Rule::Range, 0, -kWireMax, kWireMax, "um"},
+    {ParamId::LowBatteryMv, "low_battery", 0x3C, 2, FieldType::U16, Role::Factory, Rule::Range, 3300, 2500, 30000, "mV"},
     {ParamId::StepCountValid, "step_count_valid", 0x3E, 1, FieldType::U8, Role::StepCounter, Rule::Range, 0, 0, 1, "flag"},
     {ParamId::LayoutVersion, "layout_version", 0x3F, 1, FieldType::U8, Role::Meta, Rule::Range, 1, 1, 1, "-"},
     {ParamId::StepCountX, "step_count_x", 0x40, 4, FieldType::I32, Role::StepCounter, Rule::Range, 0, kI32Min, kI32Max, "usteps"},

@@ -113,7 +113,6 @@ constexpr Validation validate(const ParameterSet& s) noexcept {
   }
   if (s.start_speed_um_s > s.slow_speed_um_s) return {ValidationError::SpeedOrder, ParamId::StartSpeed};
   if (s.slow_speed_um_s > s.fast_speed_um_s) return {ValidationError::SpeedOrder, ParamId::SlowSpeed};
-  if (s.homing_speed_um_s > s.fast_speed_um_s) return {ValidationError::SpeedOrder, ParamId::HomingSpeed};
   if (s.soft_min_x_um >= s.soft_max_x_um) return {ValidationError::LimitOrder, ParamId::SoftMinX};
   if (s.soft_min_y_um >= s.soft_max_y_um) return {ValidationError::LimitOrder, ParamId::SoftMinY};
   return {ValidationError::None, ParamId::MaxAcceleration};

@@ -186,6 +186,7 @@ class EchoModel {
  private:
   struct Params {
     std::int32_t accel = 20000, fast = 10000, slow = 2000, start = 500, homing = 2000;
+    std::int32_t homing_mode = 1;  // docs/storage.md: only 1 (min endstop) homes
     std::int32_t pitch = 2000, steps = 200, micro = 16, irun = 16, ihold = 8;
     std::array<std::int32_t, kAxes> soft_min{0, 0}, soft_max{200000, 200000}, home_offset{0, 0};
     std::int32_t low_battery = 3300;

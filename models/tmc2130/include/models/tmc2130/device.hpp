@@ -32,7 +32,9 @@ class Device {
 
   // What the chip really holds, write-only registers included (a test oracle: the driver
   // cannot see this).
-  std::uint32_t chip_register(chip::Reg reg) const { return regs_[chip::index_of(reg)]; }
+  std::uint32_t chip_register(chip::Reg reg) const {
+    return reg == chip::Reg::DRV_STATUS ? drv_status_view() : regs_[chip::index_of(reg)];
+  }
 
   // The DRV_ENN pin (datasheet 2.2, pin table: "high: power stage switched off, all motor
   // outputs floating"). The board drives it from the MCU's enable output.
@@ -49,7 +51,30 @@ class Device {
   // `edges` STEP rising edges in the direction `dir` (+1/-1): how far the rotor turns, in
   // 1/256 of a full step (datasheet, STEP/DIR interface: one microstep per active STEP edge,
   // with dedge = 0 the rising one; MRES = 0 is 256 microsteps per full step). Zero while the power stage is off.
-  std::int64_t step(std::int64_t edges, int dir) const;
+  std::int64_t step(std::int64_t edges, int dir);
+
+  // Time passing on the chip's clock (the standstill detection and the current reduction
+  // count it). The internal oscillator's nominal 12 MHz (datasheet, electrical
+  // characteristics, from memory).
+  void elapse_us(std::int64_t us);
+
+  // Standstill (datasheet 5.5 DRV_STATUS.stst): 2^20 clocks after the last STEP edge.
+  bool standstill() const;
+  // The current scale the chip drives now (DRV_STATUS.CS_ACTUAL, datasheet 5.2 IHOLD_IRUN,
+  // TPOWERDOWN): IRUN while stepping; TPOWERDOWN * 2^18 clocks after the last edge it starts
+  // to fall by one step per IHOLDDELAY * 2^18 clocks (at once with IHOLDDELAY = 0) to IHOLD;
+  // 0 while the power stage is off.
+  std::int32_t current_scale() const;
+
+  // The diagnostic outputs (datasheet 5.1 GCONF diag0_* / diag1_*, 2.2 pin table), as "asserted":
+  // DIAG0 on a driver error (ot, s2ga, s2gb) with diag0_error, on the over-temperature
+  // pre-warning with diag0_otpw, on a stall with diag0_stall; DIAG1 on a stall with
+  // diag1_stall. Open drain, active low unless the push-pull bit is set (then active high).
+  bool diag0_asserted() const;
+  bool diag1_asserted() const;
+  // The pin level: low when asserted (open drain, active low) unless the push-pull bit is set.
+  bool diag0_level() const;
+  bool diag1_level() const;
 
   // Inputs the chip would measure: read-only registers (DRV_STATUS, TSTEP, ...) and GSTAT
   // flags such as drv_err.
@@ -84,6 +109,13 @@ class Device {
   std::array<std::uint32_t, chip::kRegisterCount> regs_{};
   std::uint32_t latch_ = 0;
   bool drv_enn_high_ = false;
+  // A short to ground (s2ga/s2gb) switches the bridges off until TOFF is written 0 or DRV_ENN
+  // goes high (datasheet 5.5 DRV_STATUS s2ga/s2gb).
+  bool short_latched_ = false;
+  // Clocks since the last STEP edge; power-up counts as long ago (the reset DRV_STATUS has stst).
+  std::int64_t clocks_since_step_ = std::int64_t{1} << 40;
+  std::uint32_t drv_status_input_ = 0x80000000U;  // set_input's flags (ot, s2g*, stallGuard, ...)
+  std::uint32_t drv_status_view() const;
   chip::Reg corrupt_reg_ = chip::Reg::GCONF;
   std::uint32_t corrupt_flip_ = 0;
   unsigned corrupt_count_ = 0;

@@ -70,6 +70,10 @@ struct Config {
   std::uint32_t max_transmissions = 100; // then the frame is given up (4 s at 40 ms)
   std::int64_t keepalive_us = 100'000;   // thesis §6.2: a frame every 100 ms when idle
   std::uint16_t first_seq = 0;
+  // Factory parameters (docs/storage.md "Factory and user parameters": pitch, steps, usteps,
+  // irun, ihold) are sent only by a client opened for factory work; otherwise such a command
+  // settles `invalid` at once and never reaches the board.
+  bool factory = false;
 };
 
 // What rides along in every new frame: the held jog level of each axis (sent in a free part,

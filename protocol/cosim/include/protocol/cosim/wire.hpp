@@ -54,8 +54,12 @@ inline constexpr std::uint8_t kSpiDevices = 6;
 enum class AdcChannel : std::uint8_t { Battery = 0, ChargeCurrent = 1 };
 
 // MCU pins the peripheral layer drives or reads directly (the rest sit on the GPIO expander).
-enum class Pin : std::uint8_t { DirX = 0, DirY = 1, EnaX = 2, EnaY = 3, BleStatus1 = 4, BleStatus2 = 5 };
-inline constexpr std::uint8_t kPins = 6;
+// KillSwitch: high cuts the unit's supply (thesis §7.9.5); ChargerEnable: high connects the
+// charging circuit (§7.9.3; docs/board.md "Charger disconnect").
+enum class Pin : std::uint8_t {
+  DirX = 0, DirY = 1, EnaX = 2, EnaY = 3, BleStatus1 = 4, BleStatus2 = 5, KillSwitch = 6, ChargerEnable = 7
+};
+inline constexpr std::uint8_t kPins = 8;
 
 constexpr void put_u16(std::uint8_t* p, std::uint16_t v) {
   p[0] = static_cast<std::uint8_t>(v >> 8);
