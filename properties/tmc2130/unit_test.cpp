@@ -10,6 +10,7 @@
 #include "core/tmc2130/current.hpp"
 #include "core/tmc2130/driver.hpp"
 #include "harness.hpp"
+#include "models/tmc2130/datasheet.hpp"
 #include "models/tmc2130/text.hpp"
 
 namespace {
@@ -471,4 +472,93 @@ TEST(tmc2130_power_stage, diag_outputs_follow_gconf) {
   (void)d.transfer(write_reg(0x00, 1u << 5));  // diag0_error
   d.set_input(Reg::DRV_STATUS, 1u << 25);      // ot
   EXPECT_TRUE(d.diag0_asserted());
+}
+
+// Two independent readings of the datasheet must agree: the firmware's register table
+// (core/tmc2130/regmap.hpp, the code under test) and the device model's own table
+// (models/tmc2130/datasheet.hpp, written from the datasheet without looking at the firmware).
+// The model's value is the expected one. A failure here is a disagreement for a human to
+// settle against the datasheet; do not make it pass by copying one table into the other.
+namespace {
+namespace ds = ap::model::tmc2130::datasheet;
+
+std::string hex32(std::uint32_t v) {
+  std::ostringstream o;
+  o << "0x" << std::hex << std::uppercase;
+  o.width(8);
+  o.fill('0');
+  o << v;
+  return o.str();
+}
+}  // namespace
+
+TEST(tmc2130_datasheet, the_same_registers_at_the_same_addresses) {
+  EXPECT_EQ(chip::kRegisterCount, ds::kRegisters.size());
+  for (const auto& fw : chip::kRegisters) {
+    const ds::RegisterFact* f = ds::fact(chip::address(fw.reg));
+    ASSERT_NE(f, nullptr) << fw.name << ": the firmware puts it at " << hex32(chip::address(fw.reg))
+                          << ", the datasheet has no register there";
+    EXPECT_EQ(fw.name, f->name) << "address " << hex32(f->address) << ": firmware " << fw.name << ", datasheet "
+                                << f->name;
+  }
+  for (const auto& f : ds::kRegisters) {
+    const auto idx = chip::register_index(f.address);
+    EXPECT_TRUE(idx.has_value()) << f.name << " (datasheet address " << hex32(f.address)
+                                 << ") is missing from the firmware table";
+    if (!idx) continue;
+    EXPECT_EQ(chip::address(chip::kRegisters[*idx].reg), f.address) << f.name;
+  }
+}
+
+TEST(tmc2130_datasheet, access_agrees) {
+  for (const auto& f : ds::kRegisters) {
+    const auto idx = chip::register_index(f.address);
+    if (!idx) continue;  // reported by the_same_registers_at_the_same_addresses
+    const auto& fw = chip::kRegisters[*idx];
+    EXPECT_EQ(chip::access_name(fw.access), ds::access_name(f.access))
+        << f.name << " access: firmware " << chip::access_name(fw.access) << ", datasheet "
+        << ds::access_name(f.access);
+    EXPECT_EQ(chip::readable(fw.reg), ds::readable(f.access)) << f.name << " readable";
+    EXPECT_EQ(chip::writable(fw.reg), ds::writable(f.access)) << f.name << " writable";
+    EXPECT_EQ(fw.access == chip::Access::RC, ds::clears_on_read(f.access)) << f.name << " clear on read";
+  }
+}
+
+TEST(tmc2130_datasheet, reset_value_agrees) {
+  for (const auto& f : ds::kRegisters) {
+    const auto idx = chip::register_index(f.address);
+    if (!idx) continue;
+    const auto& fw = chip::kRegisters[*idx];
+    EXPECT_EQ(fw.reset, f.reset) << f.name << " reset: firmware " << hex32(fw.reset) << ", datasheet "
+                                 << hex32(f.reset);
+  }
+}
+
+TEST(tmc2130_datasheet, implemented_mask_agrees) {
+  for (const auto& f : ds::kRegisters) {
+    const auto idx = chip::register_index(f.address);
+    if (!idx) continue;
+    const auto& fw = chip::kRegisters[*idx];
+    const std::uint32_t m = chip::implemented_mask(fw.reg);
+    EXPECT_EQ(m, f.implemented) << f.name << " implemented bits: firmware " << hex32(m) << ", datasheet "
+                                << hex32(f.implemented) << " (differ in " << hex32(m ^ f.implemented) << ")";
+  }
+}
+
+// The model behaves by its own table: a fresh chip holds the datasheet's reset values, a read
+// returns 0 exactly for the write-only registers, and an all-ones write keeps exactly the
+// implemented bits (raw datagrams, no firmware driver in between).
+TEST(tmc2130_datasheet, the_model_follows_its_datasheet_table) {
+  for (const auto& f : ds::kRegisters) {
+    ap::model::tmc2130::Device d;
+    const auto reg = static_cast<chip::Reg>(f.address);  // chip::Reg's value is the SPI address
+    EXPECT_EQ(d.chip_register(reg), f.reset) << f.name << " after power-up";
+    if (f.address == ds::addr::GSTAT) continue;  // its read clears it; see tmc2130_model
+    (void)d.transfer(chip::encode({false, f.address, 0}));
+    const std::uint32_t got = chip::data_of(d.transfer(chip::encode({false, f.address, 0})));
+    EXPECT_EQ(got, ds::readable(f.access) ? f.reset : 0u) << f.name << " read after power-up";
+    if (!ds::writable(f.access)) continue;
+    (void)d.transfer(chip::encode({true, f.address, 0xFFFFFFFFu}));
+    EXPECT_EQ(d.chip_register(reg), f.implemented) << f.name << " after writing all ones";
+  }
 }

@@ -5,6 +5,7 @@
 namespace ap::model::tmc2130 {
 
 namespace {
+namespace ds = datasheet;
 // Datasheet 5.5, register 0x6C CHOPCONF. Stated here, not read from core/tmc2130's table.
 constexpr std::uint32_t kToffMask = 0x0000000FU;  // bits 3..0
 constexpr unsigned kMresShift = 24;               // bits 27..24
@@ -27,8 +28,7 @@ constexpr std::int64_t kDelayUnitClocks = std::int64_t{1} << 18;
 bool Device::power_stage_on() const {
   const std::uint32_t drv = drv_status_input_;
   // ot: "the driver is shut down due to overtemperature"; a short stays off until cleared.
-  return !drv_enn_high_ && (regs_[chip::index_of(chip::Reg::CHOPCONF)] & kToffMask) != 0 && (drv & kOt) == 0 &&
-         !short_latched_;
+  return !drv_enn_high_ && (regs_[ds::addr::CHOPCONF] & kToffMask) != 0 && (drv & kOt) == 0 && !short_latched_;
 }
 
 void Device::elapse_us(std::int64_t us) {
@@ -39,11 +39,11 @@ bool Device::standstill() const { return clocks_since_step_ >= kStandstillClocks
 
 std::int32_t Device::current_scale() const {
   if (!power_stage_on()) return 0;
-  const std::uint32_t ihold_irun = regs_[chip::index_of(chip::Reg::IHOLD_IRUN)];
+  const std::uint32_t ihold_irun = regs_[ds::addr::IHOLD_IRUN];
   const auto ihold = static_cast<std::int32_t>(ihold_irun & 0x1FU);
   const auto irun = static_cast<std::int32_t>((ihold_irun >> 8) & 0x1FU);
   const auto delay = static_cast<std::int64_t>((ihold_irun >> 16) & 0xFU);
-  const auto tpowerdown = static_cast<std::int64_t>(regs_[chip::index_of(chip::Reg::TPOWERDOWN)] & 0xFFU);
+  const auto tpowerdown = static_cast<std::int64_t>(regs_[ds::addr::TPOWERDOWN] & 0xFFU);
   const std::int64_t after = clocks_since_step_ - tpowerdown * kDelayUnitClocks;
   if (after < 0 || irun <= ihold) return after < 0 ? irun : ihold;
   if (delay == 0) return ihold;
@@ -59,29 +59,29 @@ std::uint32_t Device::drv_status_view() const {
 }
 
 bool Device::diag0_asserted() const {
-  const std::uint32_t g = regs_[chip::index_of(chip::Reg::GCONF)];
+  const std::uint32_t g = regs_[ds::addr::GCONF];
   const std::uint32_t d = drv_status_input_;
   return ((g & kDiag0Error) != 0 && ((d & (kOt | kS2ga | kS2gb)) != 0 || short_latched_)) ||
          ((g & kDiag0Otpw) != 0 && (d & kOtpw) != 0) || ((g & kDiag0Stall) != 0 && (d & kStallGuard) != 0);
 }
 
 bool Device::diag1_asserted() const {
-  const std::uint32_t g = regs_[chip::index_of(chip::Reg::GCONF)];
+  const std::uint32_t g = regs_[ds::addr::GCONF];
   return (g & kDiag1Stall) != 0 && (drv_status_input_ & kStallGuard) != 0;
 }
 
 bool Device::diag0_level() const {
-  const bool push_pull = (regs_[chip::index_of(chip::Reg::GCONF)] & kDiag0PushPull) != 0;
+  const bool push_pull = (regs_[ds::addr::GCONF] & kDiag0PushPull) != 0;
   return push_pull ? diag0_asserted() : !diag0_asserted();
 }
 
 bool Device::diag1_level() const {
-  const bool push_pull = (regs_[chip::index_of(chip::Reg::GCONF)] & kDiag1PushPull) != 0;
+  const bool push_pull = (regs_[ds::addr::GCONF] & kDiag1PushPull) != 0;
   return push_pull ? diag1_asserted() : !diag1_asserted();
 }
 
 std::int32_t Device::microsteps() const {
-  const std::uint32_t mres = (regs_[chip::index_of(chip::Reg::CHOPCONF)] >> kMresShift) & kMresMask;
+  const std::uint32_t mres = (regs_[ds::addr::CHOPCONF] >> kMresShift) & kMresMask;
   // The datasheet defines MRES only up to %1000; a larger value is taken as full step, the
   // coarsest the chip has (the firmware never writes one: its field range stops at 8).
   return std::int32_t{256} >> (mres > kMresFullStep ? kMresFullStep : mres);
@@ -95,7 +95,9 @@ std::int64_t Device::step(std::int64_t edges, int dir) {
 }
 
 void Device::power_cycle() {
-  for (std::size_t i = 0; i < chip::kRegisterCount; ++i) regs_[i] = chip::kRegisters[i].reset;
+  // Every register to its power-up value (datasheet table); unused addresses hold 0.
+  regs_.fill(0);
+  for (const auto& f : ds::kRegisters) regs_[f.address] = f.reset;
   latch_ = 0;
   short_latched_ = false;
   drv_status_input_ = 0x80000000U;
@@ -103,16 +105,16 @@ void Device::power_cycle() {
 }
 
 std::uint32_t Device::read_view(std::uint8_t addr) const {
-  const auto idx = chip::register_index(addr);
+  const ds::RegisterFact* f = ds::fact(addr);
   // Unused addresses and write-only registers return 0 (datasheet 5: write-only
   // registers cannot be read back), which is exactly why drivers need shadows.
-  if (!idx || !chip::readable(chip::kRegisters[*idx].access)) return 0;
-  if (chip::kRegisters[*idx].reg == chip::Reg::DRV_STATUS) return drv_status_view();
-  return regs_[*idx];
+  if (f == nullptr || !ds::readable(f->access)) return 0;
+  if (f->address == ds::addr::DRV_STATUS) return drv_status_view();
+  return regs_[f->address];
 }
 
 std::uint8_t Device::status_byte() const {
-  const std::uint32_t gstat = regs_[chip::index_of(chip::Reg::GSTAT)];
+  const std::uint32_t gstat = regs_[ds::addr::GSTAT];
   const std::uint32_t drv = drv_status_view();
   return chip::encode_status({(gstat & 1u) != 0, (gstat & 2u) != 0, ((drv >> 24) & 1u) != 0,
                               ((drv >> 31) & 1u) != 0});
@@ -125,31 +127,33 @@ chip::Datagram Device::transfer(const chip::Datagram& mosi) {
                             static_cast<std::uint8_t>(latch_ >> 16),
                             static_cast<std::uint8_t>(latch_ >> 8), static_cast<std::uint8_t>(latch_)};
   log_.push_back({req.write, req.address, req.data});
-  const auto idx = chip::register_index(req.address);
+  const ds::RegisterFact* f = ds::fact(req.address);
   if (req.write) {
-    if (idx && chip::writable(chip::kRegisters[*idx].access)) {
-      const chip::Reg reg = chip::kRegisters[*idx].reg;
+    // A write to a read-only register or an unused address changes nothing.
+    if (f != nullptr && ds::writable(f->access)) {
       std::uint32_t v = req.data;
-      if (corrupt_count_ > 0 && reg == corrupt_reg_) {
+      if (corrupt_count_ > 0 && f->address == slot(corrupt_reg_)) {
         v ^= corrupt_flip_;
         --corrupt_count_;
       }
-      regs_[*idx] = v & chip::implemented_mask(reg);
-      if (reg == chip::Reg::CHOPCONF && (regs_[*idx] & kToffMask) == 0) short_latched_ = false;
+      regs_[f->address] = v & f->implemented;  // reserved bits are not kept
+      if (f->address == ds::addr::CHOPCONF && (regs_[f->address] & kToffMask) == 0) short_latched_ = false;
     }
     latch_ = read_view(req.address);
   } else {
     latch_ = read_view(req.address);
-    if (idx && chip::kRegisters[*idx].access == chip::Access::RC) regs_[*idx] = 0;
+    if (f != nullptr && ds::clears_on_read(f->access)) regs_[f->address] = 0;  // R+C: GSTAT
   }
   if (power_cycle_in_ > 0 && --power_cycle_in_ == 0) power_cycle();
   return miso;
 }
 
 void Device::set_input(chip::Reg reg, std::uint32_t value) {
-  regs_[chip::index_of(reg)] = value & chip::implemented_mask(reg);
-  if (reg == chip::Reg::DRV_STATUS) {
-    drv_status_input_ = regs_[chip::index_of(reg)];
+  // Only the bits the datasheet defines in that register can be measured.
+  const ds::RegisterFact* f = ds::fact(slot(reg));
+  regs_[slot(reg)] = f != nullptr ? value & f->implemented : 0U;
+  if (slot(reg) == ds::addr::DRV_STATUS) {
+    drv_status_input_ = regs_[slot(reg)];
     if ((drv_status_input_ & (kS2ga | kS2gb)) != 0) short_latched_ = true;
   }
 }

@@ -23,7 +23,7 @@ enum class Access : std::uint8_t {
 #define AP_TMC2130_REGISTERS(X)               \
   X(GCONF, 0x00, RW, 0x00000000u)             \
   X(GSTAT, 0x01, RC, 0x00000001u)             \
-  X(IOIN, 0x04, R, 0x11000000u)               \
+  X(IOIN, 0x04, R, 0x11000040u)               \
   X(IHOLD_IRUN, 0x10, W, 0x00000000u)         \
   X(TPOWERDOWN, 0x11, W, 0x00000000u)         \
   X(TSTEP, 0x12, R, 0x000FFFFFu)              \
@@ -84,6 +84,7 @@ enum class Access : std::uint8_t {
   X(IOIN, DCIN_CFG5, 3, 1, false, 0, 1)                           \
   X(IOIN, DRV_ENN_CFG6, 4, 1, false, 0, 1)                        \
   X(IOIN, DCO, 5, 1, false, 0, 1)                                 \
+  X(IOIN, always_1, 6, 1, false, 0, 1)                            \
   X(IOIN, VERSION, 24, 8, false, 0, 255)                          \
   X(IHOLD_IRUN, IHOLD, 0, 5, false, 0, 31)                        \
   X(IHOLD_IRUN, IRUN, 8, 5, false, 0, 31)                         \

@@ -6,14 +6,19 @@
 // != 0) and DRV_ENN is low, by the microstep the chip's own CHOPCONF.MRES selects. The bit
 // positions the power stage reads are written here from the datasheet, not taken from the
 // firmware's register table, so a firmware that misreads them cannot agree with the model.
+// The same holds for every register's access class, reset value and implemented bits: they
+// come from the model's own datasheet table (datasheet.hpp), not from core/tmc2130/regmap.hpp;
+// chip::Reg is used only as an SPI address in the public API (its value is the address).
 // Test hooks (fault injection, access log) are explicit and off by default.
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "core/tmc2130/datagram.hpp"
 #include "core/tmc2130/driver.hpp"
 #include "core/tmc2130/regmap.hpp"
+#include "models/tmc2130/datasheet.hpp"
 
 namespace ap::model::tmc2130 {
 
@@ -33,7 +38,7 @@ class Device {
   // What the chip really holds, write-only registers included (a test oracle: the driver
   // cannot see this).
   std::uint32_t chip_register(chip::Reg reg) const {
-    return reg == chip::Reg::DRV_STATUS ? drv_status_view() : regs_[chip::index_of(reg)];
+    return reg == chip::Reg::DRV_STATUS ? drv_status_view() : regs_[slot(reg)];
   }
 
   // The DRV_ENN pin (datasheet 2.2, pin table: "high: power stage switched off, all motor
@@ -106,7 +111,12 @@ class Device {
   std::uint32_t read_view(std::uint8_t addr) const;
   std::uint8_t status_byte() const;
 
-  std::array<std::uint32_t, chip::kRegisterCount> regs_{};
+  // The register contents, indexed by the 7-bit SPI address (unused addresses stay 0).
+  static constexpr std::size_t kAddressCount = 0x80;
+  static constexpr std::uint8_t slot(chip::Reg reg) {
+    return static_cast<std::uint8_t>(chip::address(reg) & std::uint8_t{0x7F});
+  }
+  std::array<std::uint32_t, kAddressCount> regs_{};
   std::uint32_t latch_ = 0;
   bool drv_enn_high_ = false;
   // A short to ground (s2ga/s2gb) switches the bridges off until TOFF is written 0 or DRV_ENN
