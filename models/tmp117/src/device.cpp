@@ -6,6 +6,10 @@ namespace ap::model::tmp117 {
 
 namespace {
 constexpr std::size_t idx(chip::Reg r) { return static_cast<std::size_t>(r); }
+// SNOSD82 8.1.2 (Configuration register): bits 11:2 are read/write (MOD 11:10, CONV 9:7,
+// AVG 6:5, T/nA 4, POL 3, DR/Alert 2); 15:12 are status (read only), 1 is the soft reset
+// (reads 0), 0 is reserved. Stated here, not taken from the driver's mask.
+constexpr std::uint16_t kConfigWritable = 0x0FFCU;
 constexpr std::uint16_t kStatusBits = chip::cfg::kHighAlert | chip::cfg::kLowAlert | chip::cfg::kDataReady |
                                       chip::cfg::kEepromBusy;
 // model: factory contents of the general-purpose EEPROM words (the datasheet gives xxxx).
@@ -114,7 +118,7 @@ void Device::write_register(std::uint8_t p, std::uint16_t value) {
     case chip::Reg::Configuration: {
       std::uint16_t& c = regs_[p];
       const std::uint16_t before = c & (chip::cfg::kModMask | chip::cfg::kConvMask | chip::cfg::kAvgMask);
-      std::uint16_t next = static_cast<std::uint16_t>((c & kStatusBits) | (value & chip::cfg::kWritable));
+      std::uint16_t next = static_cast<std::uint16_t>((c & kStatusBits) | (value & kConfigWritable));
       if (chip::cfg::mod(next) == 2) next &= static_cast<std::uint16_t>(~chip::cfg::kModMask);  // 10 reads as 00
       c = next;
       if ((value & chip::cfg::kSoftReset) != 0) {
