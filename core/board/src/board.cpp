@@ -2,7 +2,6 @@
 #include "core/board/driver_setup.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <limits>
 
 #include "protocol/codec/commands.hpp"
