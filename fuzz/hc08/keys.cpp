@@ -3,15 +3,17 @@
 //              scans with bounce at both ends, then released for 25 ms; main loop after each ms
 //   0xA0-0xFF  (b - 0x9F) x 16 timer periods of running time
 // Oracles: no crash or UB; after every key the menu, settings and display (the adjusted mark
-// included) are the reference model's (models/hc08); the coils show a table pattern; the motor never steps faster than its
-// maximum frequency, changes direction only at or below the start frequency, and stops only
-// from at or below it.
+// included) are the reference model's (models/hc08), the angle shown the one the coils put the
+// rotor at (CoilTracker, docs/hc08.md "Angle arithmetic"); the coils show a table pattern; the
+// motor never steps faster than its maximum frequency, changes direction only at or below the
+// start frequency, and stops only from at or below it.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
 
 #include "core/hc08_board/board.hpp"
+#include "models/hc08/angle_model.hpp"
 #include "models/hc08/menu_model.hpp"
 
 namespace {
@@ -30,6 +32,7 @@ constexpr std::uint32_t kBus = 2'457'600;
 struct Rig {
   b::Board u;
   ap::model::hc08::MenuModel m;
+  ap::model::hc08::CoilTracker coils;  // the rotor's position from every pattern the port takes
   int last_dir = 0;
   std::uint32_t last_period = 0;
 
@@ -37,7 +40,8 @@ struct Rig {
     static const char* const kName[] = {"S_DEF", "SET_DRIVE", "SET_DIRECT", "SET_SPEED", "SET_ANGLE", "SET_SPEEDx", "SET_ANGLEx"};
     require(m.state() == kName[static_cast<int>(u.menu().state)]);
     require(u.display().indicator == m.indicator());
-    require(static_cast<int>(u.display().value) == m.value(u.motor().angle_tenths()));
+    require(coils.ok());
+    require(static_cast<int>(u.display().value) == m.value(coils.angle_tenths()));
     require(u.settings().speed_centi == m.speed() && u.settings().angle_deg == m.angle());
     require(u.display().adjusted == m.adjusted());  // a speed outside the motor's range is fitted to it
   }
@@ -50,6 +54,7 @@ struct Rig {
     const int dir = u.motor().dir();
     if (last_dir != 0 && dir != last_dir) require(last_period >= start_period || p >= start_period);
     u.timer_match();
+    coils.feed(u.port());
     if (!u.timer_running()) require(p >= start_period || u.settings().speed_centi * (half ? 80U : 40U) <= (half ? 56000U : 28000U));
     const std::uint8_t pat = u.motor().pattern();
     require(pat != 0 && pat != 0b0101 && pat != 0b1010 && (pat & 0xF0) == 0);
@@ -66,6 +71,7 @@ struct Rig {
       u.key_sample(sample);
       const bool queued = u.queue().size() > 0;
       u.main_loop();
+      coils.feed(u.port());  // a drive change at rest moves the coils without a step
       if (queued && !pressed) {
         pressed = true;
         if (known_key >= 0) m.press(known_key, running);

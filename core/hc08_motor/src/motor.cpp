@@ -35,18 +35,20 @@ Error Motor::start(const Settings& s) {
   stopping_ = false;
   reverse_pending_ = false;
   if (mode_ == Mode::B) {
-    const std::int64_t spr = hc08_drive::steps_per_rev(s.drive);
-    // From where the rotor is: a move that was stopped early leaves no debt behind (after a
-    // whole move the rotor is less than one step from the commanded position).
-    const std::int64_t off = commanded_ - steps_ * 360;
-    if (off <= -360 || off >= 360) commanded_ = steps_ * 360;
-    commanded_ += (right_ ? 1 : -1) * static_cast<std::int64_t>(s.angle_deg) * spr;
-    // Whole steps, rounded towards where the move starts: never past the commanded angle.
-    const std::int64_t to = right_ ? floor_div(commanded_, 360) : -floor_div(-commanded_, 360);
-    const std::int64_t n = to - steps_;
-    remaining_ = static_cast<std::uint32_t>(n < 0 ? -n : n);  // <= 9999 * 80 / 360 + 1
-    if (remaining_ == 0) return Error::None;                    // under a step: carried
-    right_ = n > 0;
+    // The commanded position and the rotor in one unit for both drive types, 1/360 half step
+    // (1/80 degree): what a move cannot turn is carried to the next one, across a change of
+    // drive type too (docs/hc08.md "Angle arithmetic"). A move stopped early or a mode A run
+    // leaves no debt: the next move counts from where the rotor is (a drive change included).
+    if (from_rotor_) commanded_ = half_ * 360;
+    from_rotor_ = false;
+    const std::int64_t dir = right_ ? 1 : -1;
+    commanded_ += dir * static_cast<std::int64_t>(s.angle_deg) * 80;
+    // Whole steps towards it, rounded towards where the move starts (never past it), and none
+    // against the move's own direction (a carried remainder may lie behind the rotor).
+    const std::int64_t unit = s.drive == hc08_drive::Drive::Full ? 720 : 360;
+    const std::int64_t n = floor_div(dir * (commanded_ - half_ * 360), unit);
+    remaining_ = static_cast<std::uint32_t>(n > 0 ? n : 0);  // <= (720 + 9999 * 80) / 360
+    if (remaining_ == 0) return Error::None;                 // under a step: carried
   }
   // Above the start frequency the motor starts at it and ramps; at or below, at its speed.
   const std::uint16_t start_tmod = t::tmod_at_hz(t::start_hz(s.drive));
@@ -82,7 +84,6 @@ bool Motor::set_drive(hc08_drive::Drive d) {
   if (d == seq_.drive()) return true;
   half_ += seq_.set_drive(d);
   steps_ = 0;
-  commanded_ = 0;
   return true;
 }
 
@@ -99,6 +100,7 @@ bool Motor::on_match() {
     if (stopping_) {
       running_ = false;
       remaining_ = 0;
+      from_rotor_ = true;  // mode A, or mode B stopped early: no debt
       return true;
     }
     if (reverse_pending_) {

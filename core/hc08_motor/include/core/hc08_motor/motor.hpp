@@ -62,9 +62,9 @@ class Motor {
   int dir() const { return right_ ? 1 : -1; }
   // The rotor's position in half steps (4.5°) since power-up, signed (right +): drive-independent.
   std::int64_t position_half() const { return half_; }
-  // Steps of the current drive type since it was chosen (mode B counts in them).
+  // Steps of the current drive type since it was chosen.
   std::int64_t steps() const { return steps_; }
-  // The rotor angle 0..3595 in tenths of a degree (the display's 0-360, docs/hc08.md).
+  // The rotor angle 0..3555 in tenths of a degree (the display's 0-360, docs/hc08.md).
   std::uint16_t angle_tenths() const;
   std::uint32_t remaining() const { return remaining_; }
   hc08_timer::Error last_timer_error() const { return timer_error_; }
@@ -89,11 +89,13 @@ class Motor {
   std::uint32_t remaining_ = 0;  // mode B
   std::int64_t steps_ = 0;
   std::int64_t half_ = 0;
-  // Mode B's commanded position in 1/360 step (angle * steps per rev): a move goes to it in whole
-  // steps, rounded towards where it starts, and the rest is carried to the next move: n moves
-  // never drift
-  // (docs/hc08.md "Mode B"). A new drive type starts it afresh where the rotor is.
+  // Mode B's commanded position in 1/360 half step (angle * 80, the rotor at half_ * 360): a move
+  // goes to it in whole steps, rounded towards where it starts, and the rest is carried to the
+  // next move, whatever the drive type: n moves never drift (docs/hc08.md "Mode B", "Angle
+  // arithmetic").
   std::int64_t commanded_ = 0;
+  // After a stop (mode A, or mode B early) the next move counts from where the rotor then is.
+  bool from_rotor_ = false;
   hc08_timer::Error timer_error_ = hc08_timer::Error::None;
 };
 
