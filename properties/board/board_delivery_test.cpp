@@ -160,3 +160,55 @@ TEST(BoardDelivery, RepeatsFeedTheLinkWatchdogOlderFramesDoNot) {
   EXPECT_EQ(r.board->counters().watchdog_expiries, 1U);
   EXPECT_NE(r.ax(Axis::X).mode, axis::Mode::Jog);
 }
+
+// docs/protocol.md "Delivery": the answer to a repeat tells the outcome its frame had when it
+// was taken. A move that ran, with the board blocked afterwards (each cause of §7.5.2), is
+// answered with the state now and no BLOCKED_*: the client reads BLOCKED_* as "did not take
+// effect", and a user told so would send the relative move again and move twice.
+TEST(BoardDelivery, TheAnswerToARepeatOfAFrameThatRanDoesNotShowALaterBlock) {
+  for (int cause = 0; cause < 3; ++cause) {
+    SCOPED_TRACE(cause == 0 ? "usb" : cause == 1 ? "charger" : "battery");
+    Rig r;
+    boot_homed(r);
+    const std::int32_t start = r.ax(Axis::X).pos;
+    send_seq(r, 5, C::Move, 1000);
+    r.tick();
+    EXPECT_EQ(r.ax(Axis::X).target, start + 1600);
+    r.tick(100);
+    EXPECT_NE(r.ax(Axis::X).pos, start) << "the move ran";
+    if (cause == 0) r.in.usb = true;
+    if (cause == 1) r.in.charger = true;
+    if (cause == 2) r.in.battery_mv = 3000;  // below the 3300 mV default (docs/storage.md)
+    r.tick();
+    send_seq(r, 5, C::Move, 1000);
+    r.tick();
+    const frame::EchoFrame again = last(r);
+    EXPECT_EQ(again.seq, 5);
+    EXPECT_NE(again.x.status, S::BlockedUsb);
+    EXPECT_NE(again.x.status, S::BlockedCharger);
+    EXPECT_NE(again.x.status, S::BlockedBattery);
+    EXPECT_NE(again.x.status, S::CommandRefused);
+    // A new frame taken now is blocked, and says so.
+    send_seq(r, 6, C::Nop, 0);
+    r.tick();
+    EXPECT_EQ(last(r).x.status, cause == 0 ? S::BlockedUsb : cause == 1 ? S::BlockedCharger : S::BlockedBattery);
+  }
+}
+
+// docs/board.md "Echo content": the answer to a frame tells a refusal of its command before a
+// standing fault, or a refused goto would be reported done. A sensor fault (the temperature
+// sensor lost) does not stop motion (docs/sensors.md), so motion commands still run or are
+// refused beside it.
+TEST(BoardDelivery, ARefusalShowsBeforeAStandingFault) {
+  Rig r;
+  r.tmp117.present = false;  // configure fails: the temperature sensor is lost at boot
+  boot_homed(r);
+  send_seq(r, 1, C::Nop, 0);
+  r.tick();
+  ASSERT_EQ(last(r).x.status, S::Fault) << "precondition: a standing fault";
+  send_seq(r, 2, C::Goto, 999999);  // beyond the soft limit: refused
+  r.tick();
+  EXPECT_EQ(last(r).x.status, S::CommandRefused);
+  EXPECT_EQ(last(r).x.data, static_cast<std::int32_t>(C::Goto));
+  EXPECT_EQ(last(r).y.status, S::Fault) << "the fault shows where nothing was refused";
+}

@@ -331,3 +331,54 @@ TEST(BoardEchoModel, RefusalBesideAMoveTheSwitchEndsKeepsTheEndstop) {
   EXPECT_EQ(last.x.status, EchoStatus::EndstopHit);
   EXPECT_EQ(last.x.data, 50000);
 }
+
+// docs/protocol.md "Two frames in one cycle": two new frames whose bytes are both in the
+// receive ring at one tick (a given-up frame's late copy arriving with the client's next one,
+// or two senders) are taken one per tick, each answered with its own seq and its own outcome,
+// and both run. Seq 1 asks X for a goto beyond the soft limit (refused), seq 2 for a move of
+// +1 mm (runs). Taken in one tick, the move replaced the goto unrun: seq 1 was answered as if
+// it had run, and a refusal of one showed on the other's echo. The echo model agrees tick by
+// tick, and its account of each frame (the outcome oracle's ground truth) is the documented one.
+TEST(BoardEchoModel, TwoNewFramesInOneTickAreTakenOnePerTick) {
+  Bench b(true);
+  RawFrame goto_far;
+  goto_far.seq = 1;
+  goto_far.x = {static_cast<std::uint8_t>(CommandId::Goto), 999999};  // soft max is 200 mm
+  RawFrame move;
+  move.seq = 2;
+  move.x = {static_cast<std::uint8_t>(CommandId::Move), 1000};
+  Bytes both = encode(goto_far);
+  const Bytes second = encode(move);
+  both.insert(both.end(), second.begin(), second.end());
+  const std::int32_t start = b.rig.ax(ap::board::Axis::X).pos;
+  b.rx(both);
+
+  b.tick();
+  ASSERT_EQ(b.rig.tx.size(), 1U) << "one answer: the second frame waits in the ring";
+  frame::EchoFrame e{};
+  ASSERT_TRUE(frame::parse_echo(b.rig.tx.back(), e).ok());
+  EXPECT_EQ(e.seq, 1);
+  EXPECT_EQ(e.x.status, EchoStatus::CommandRefused);
+  EXPECT_EQ(e.x.data, static_cast<std::int32_t>(CommandId::Goto));
+  EXPECT_EQ(b.rig.board->counters().dispatched_frames, 1U);
+  EXPECT_EQ(b.rig.ax(ap::board::Axis::X).mode, ap::axis::Mode::Idle) << "the refused goto changed nothing";
+  const auto& f1 = b.checker->model().fate_this_tick();
+  ASSERT_TRUE(f1.has_value());
+  EXPECT_EQ(f1->frame.seq, 1);
+  EXPECT_EQ(f1->refused[0], CommandId::Goto);
+
+  b.tick();
+  ASSERT_EQ(b.rig.tx.size(), 2U);
+  ASSERT_TRUE(frame::parse_echo(b.rig.tx.back(), e).ok());
+  EXPECT_EQ(e.seq, 2);
+  EXPECT_NE(e.x.status, EchoStatus::CommandRefused) << "the goto's refusal stays on its own answer";
+  EXPECT_EQ(b.rig.board->counters().dispatched_frames, 2U);
+  EXPECT_EQ(b.rig.ax(ap::board::Axis::X).target, start + 1600) << "+1 mm = 1600 usteps (2 mm lead, 3200 usteps/rev)";
+  const auto& f2 = b.checker->model().fate_this_tick();
+  ASSERT_TRUE(f2.has_value());
+  EXPECT_EQ(f2->frame.seq, 2);
+  EXPECT_FALSE(f2->refused[0].has_value());
+
+  for (int t = 0; t < 10; ++t) b.tick();
+  EXPECT_TRUE(b.bad.empty()) << (b.bad.empty() ? "" : b.bad.front());
+}

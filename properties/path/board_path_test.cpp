@@ -176,12 +176,12 @@ TEST(BoardPath, TheThesisMachineHalfCircleKeepsEveryAxisProperty) {
   p.r.send(C::SetMicrosteps, 1, C::Nop, 0);
   p.r.send(C::SetFastSpeed, 50000, C::Nop, 0);
   p.r.send(C::SetAccel, 40000, C::Nop, 0);
-  p.tick(2);
+  p.tick(5);  // one new frame per tick (docs/protocol.md "Two frames in one cycle")
   p.r.send(C::PathLine, 100000, C::PathLine, 150000);
   p.r.send(C::PathCentre, 100000, C::PathCentre, 100000);
   p.r.send(C::PathArcCw, 100000, C::PathArcCw, 50000);
   p.r.send(C::PathEnd, 0, C::Nop, 0);
-  p.tick(2);
+  p.tick(5);
   p.run_until_idle();
   EXPECT_EQ(p.um(Axis::X), 100000);
   EXPECT_EQ(p.um(Axis::Y), 50000);
@@ -229,7 +229,7 @@ TEST(BoardPath, StepPulsesAddUpToTheCounterOnTinyCircles) {
   p.r.send(C::SetAccel, 19000, C::Nop, 0);
   p.r.send(C::SetPitch, 200, C::Nop, 0);
   p.r.send(C::SetMicrosteps, 256, C::Nop, 0);
-  p.tick(2);
+  p.tick(6);  // one new frame per tick (docs/protocol.md "Two frames in one cycle")
   ASSERT_EQ(p.r.board->mechanics().microsteps, 256);
   ASSERT_EQ(p.r.board->mechanics().pitch_um, 200);
   p.r.send(C::PathLine, 1000, C::PathLine, 1000);
@@ -242,7 +242,7 @@ TEST(BoardPath, StepPulsesAddUpToTheCounterOnTinyCircles) {
   for (int k = 0; k < 10; ++k) {
     p.r.send(C::PathCentre, 1001, C::PathCentre, 1000);
     p.r.send(C::PathArcCcw, 1000, C::PathArcCcw, 1000);
-    if (k % 2 == 1) p.tick();
+    p.tick(2);  // the board takes one new frame per tick (docs/protocol.md "Two frames in one cycle")
   }
   p.r.send(C::PathEnd, 0, C::Nop, 0);
   int max_steps = 0;

@@ -1,5 +1,6 @@
 // The simulated board: the board core over virtual peripherals (docs/sim.md).
 #include "sim/board.hpp"
+#include "sim/outcome_oracle.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -533,6 +534,9 @@ void SimBoard::tick() {
   if (!same_env(board_->inputs(), sampled_)) echo_disagreement("the core's inputs differ from what the hardware delivered");
   echoes_checked_ += tick_echoes_.size();
   for (const std::string& m : checker_->after_tick(tick_echoes_, sensors_now())) echo_disagreement(m);
+  // The outcome oracle's ground truth (docs/sim.md "Outcome check"): what the model says
+  // became of the frame taken in this tick, by its seq.
+  if (const auto& f = checker_->model().fate_this_tick()) fates_[f->frame.seq] = *f;
   trace_tick();
   const std::uint16_t w = expander_word();
   if (w != expander_last_ && wave_) {
@@ -731,6 +735,11 @@ std::string SimBoard::probe(const std::string& subject) {
   if (subject == "x.lost_steps" || subject == "y.lost_steps") return std::to_string(lost_step_risks(axis_of(subject.substr(0, 1))));
   if (subject == "lost_steps") return std::to_string(lost_step_risks(0) + lost_step_risks(1));
   if (subject == "watchdog_stops") return std::to_string(board_->counters().watchdog_expiries);
+  if (subject.rfind("fate.", 0) == 0) {
+    // fate.SEQ: the last frame taken with that seq, as sim/outcome_oracle.hpp writes it.
+    const auto it = fates_.find(static_cast<std::uint16_t>(to_int(subject.substr(5))));
+    return it == fates_.end() ? std::string("none") : fate_text(it->second);
+  }
   if (subject == "taken") return std::to_string(frames_taken_) + " " + std::to_string(taken_digest_);
   if (subject == "gated") return std::to_string(board_->counters().gated_frames);
   if (subject == "violations") {

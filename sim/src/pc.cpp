@@ -23,6 +23,7 @@
 #include "core/frame/frames.hpp"
 #include "core/storage/parameters.hpp"
 #include "sim/fault_link.hpp"
+#include "sim/outcome_oracle.hpp"
 #include "sim/params.hpp"
 #include "text.hpp"
 
@@ -79,6 +80,7 @@ struct BoardPc {
   std::vector<bool> delivered;
   std::optional<std::uint64_t> last_index;
   std::uint32_t link_failures = 0;
+  std::uint32_t outcome_failures = 0;
 };
 
 struct Mech {
@@ -478,6 +480,7 @@ class Pc {
         }
         b.stop_seq.erase(it);
       }
+      check_outcome(b, r, t);
       b.reports.push_back(r);
     }
     for (std::size_t i = 0; i < 2; ++i) {
@@ -489,6 +492,29 @@ class Pc {
              ", a ramp time after its stop was confirmed");
       }
       x.stop_deadline_us.reset();
+    }
+  }
+
+  // The outcome check (docs/sim.md "Outcome check"): the outcome the user is told against what
+  // the board did with the frame, as the board-side echo model states it. A disagreement fails
+  // the run like a safety violation.
+  void check_outcome(BoardPc& b, const client::Report& r, std::int64_t t) {
+    std::optional<model::echo::FrameFate> fate;
+    const bool answered = r.outcome == client::Outcome::Done || r.outcome == client::Outcome::Refused ||
+                          r.outcome == client::Outcome::Blocked;
+    if (answered && r.seq) {
+      const std::string text = env(b, "probe fate." + std::to_string(*r.seq), t);
+      if (text != "none") {
+        fate = parse_fate(text);
+        if (!fate) {
+          fail("outcome: board " + std::to_string(b.id) + ": unreadable fate '" + text + "'");
+          return;
+        }
+      }
+    }
+    ++b.verdict.delivery.outcomes_checked;
+    if (const auto m = ap::sim::check_outcome(r, fate)) {
+      if (++b.outcome_failures <= 5) fail("outcome: board " + std::to_string(b.id) + " at " + tstr(t) + ": " + *m);
     }
   }
 
@@ -663,6 +689,11 @@ class Pc {
     if (subj == "delivered") return Val(static_cast<double>(c.delivered));
     if (subj == "failed") return Val(static_cast<double>(c.failed));
     if (subj == "retransmissions") return Val(static_cast<double>(c.retransmissions));
+    if (subj.rfind("outcome.", 0) == 0) {
+      const std::string key = subj.substr(8);
+      return Val(static_cast<double>(std::count_if(b.reports.begin(), b.reports.end(),
+                                                   [&](const client::Report& r) { return key == client::to_string(r.outcome); })));
+    }
     return std::nullopt;
   }
 

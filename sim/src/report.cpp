@@ -32,7 +32,8 @@ std::string format_report(const sc::Scenario& s, const RunResult& r) {
       o << "    delivery: " << b.delivery.submitted << " commands, " << b.delivery.delivered << " delivered, "
         << b.delivery.failed << " failed; " << b.delivery.new_frames << " frames, " << b.delivery.retransmissions
         << " retransmissions, " << b.delivery.given_up << " given up; the board took " << b.delivery.frames_taken
-        << ", the client saw " << b.delivery.frames_answered << " answered";
+        << ", the client saw " << b.delivery.frames_answered << " answered; " << b.delivery.outcomes_checked
+        << " outcomes checked";
       if (!lat.empty()) {
         o << "; confirmation " << fmt(static_cast<double>(lat[lat.size() / 2]) / 1000.0) << " ms median, "
           << fmt(static_cast<double>(lat.back()) / 1000.0) << " ms max";

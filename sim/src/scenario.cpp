@@ -406,6 +406,10 @@ std::optional<Dim> subject_dim(std::string_view s) {
       s == "commands" || s == "delivered" || s == "failed" || s == "retransmissions") {
     return Dim::none;
   }
+  // The client's outcomes (docs/protocol.md "Outcomes"), counted by kind.
+  for (const char* k : {"done", "refused", "blocked", "superseded", "unconfirmed", "link_down", "invalid"}) {
+    if (s == std::string("outcome.") + k) return Dim::none;
+  }
   return std::nullopt;
 }
 

@@ -242,7 +242,12 @@ void Board::begin_of_cycle() {
 }
 
 void Board::receive() {
-  while (rx_count_ > 0 && echo_count_ < echoes_.size()) {
+  // At most one new frame is taken per cycle (docs/protocol.md "Two frames in one cycle"): the
+  // handlers only store this cycle's motion command and the axes apply it when they step, so
+  // a second new frame would replace the first one unrun while both were answered. The bytes
+  // behind a taken frame wait in the ring for the next cycle (1 ms later); repeats, older
+  // frames and rejections before it are answered in this cycle as usual.
+  while (rx_count_ > 0 && echo_count_ < echoes_.size() && !taken_this_cycle_) {
     const std::uint8_t b = rx_[rx_head_];
     rx_head_ = (rx_head_ + 1) % rx_.size();
     --rx_count_;
@@ -579,8 +584,11 @@ frame::AxisEcho Board::echo_of(std::size_t i, Block block, std::uint8_t refused)
     case Block::Battery: return {c::EchoStatus::BlockedBattery, um};
     case Block::None: break;
   }
-  if (fault_ != 0) return {c::EchoStatus::Fault, fault_};
+  // The answer to a frame says first what became of its command (docs/board.md "Echo
+  // content"): a refusal hidden behind a standing fault would read as "done". The fault shows
+  // on every other echo.
   if (refused != kNoRefusal) return {c::EchoStatus::CommandRefused, refused};
+  if (fault_ != 0) return {c::EchoStatus::Fault, fault_};
   if (sleeping_) return {c::EchoStatus::Sleeping, um};
   if (moving(s)) {
     if (s.mode == axis::Mode::Home) return {c::EchoStatus::Homing, um};
@@ -647,12 +655,13 @@ std::int32_t Board::subscriber(frame::SubscriberSlot slot) {
 frame::AxisEcho Board::echo_axis(void* ctx, Axis a) { return static_cast<const Board*>(ctx)->axis_echo(a); }
 
 frame::AxisEcho Board::echo_axis_replay(void* ctx, Axis a) {
-  // A repeated or older frame: the state now, with the refusals and the block of the last
-  // frame taken (a block that is still on shows anyway).
+  // A repeated or older frame: the outcome the last frame taken had when it was taken (its
+  // block, its refusals) and the state now (docs/protocol.md "Delivery"). A block that came on
+  // after the frame ran does not show: the client reads BLOCKED_* as "did not take effect",
+  // and that frame did; the next new frame's answer shows the block.
   const auto* b = static_cast<const Board*>(ctx);
   const std::size_t i = idx(a);
-  const Block block = b->block_ != Block::None ? b->block_ : b->last_outcome_.block;
-  return b->echo_of(i, block, b->last_outcome_.refused[i]);
+  return b->echo_of(i, b->last_outcome_.block, b->last_outcome_.refused[i]);
 }
 
 std::int32_t Board::echo_subscriber(void* ctx, frame::SubscriberSlot slot) {

@@ -16,11 +16,11 @@ void LinkTwin::rx(std::span<const std::uint8_t> bytes) {
   }
 }
 
-std::vector<FrameEvent> LinkTwin::tick() {
-  std::vector<FrameEvent> out;
+std::optional<FrameEvent> LinkTwin::next() {
   std::size_t used = 0;
-  while (used < ring_.size() && out.size() < kEventsPerTick) {
-    if (auto e = framer_.push(ring_[used++])) out.push_back({e->rejection, e->frame});
+  std::optional<FrameEvent> out;
+  while (used < ring_.size() && !out) {
+    if (auto e = framer_.push(ring_[used++])) out = FrameEvent{e->rejection, e->frame};
   }
   ring_.erase(ring_.begin(), ring_.begin() + static_cast<std::ptrdiff_t>(used));
   return out;
@@ -102,7 +102,14 @@ std::vector<std::string> BoardChecker::after_tick(std::span<const EchoBytes> sen
   Env env = env_of(board_.inputs());
   env.sensors = sensors;
   model_.begin_tick(env);
-  for (const FrameEvent& ev : link_.tick()) model_.frame(ev);
+  // docs/board.md "One cycle" step 3: frame events until four are answered, the ring is
+  // empty, or a new frame was taken (docs/protocol.md "Two frames in one cycle": the bytes
+  // behind it wait for the next tick).
+  while (model_.answers_this_tick() < kEventsPerTick && !model_.took_frame_this_tick()) {
+    const auto ev = link_.next();
+    if (!ev) break;
+    model_.frame(*ev);
+  }
   const auto want = model_.end_tick(motion_of(board_));
   const std::string at = "tick " + std::to_string(board_.ticks()) + ": ";
   for (auto& v : model_.take_violations()) bad.push_back(at + "motion: " + v);

@@ -245,6 +245,11 @@ void EchoModel::begin_tick(const Env& env) {
   } else if (env.battery_mv < p_.low_battery) {
     battery_low_ = true;
   }
+  for (auto& x : ax_) {
+    x.refused.reset();
+    x.started_now = false;
+    x.stopped_move_now = false;
+  }
   // Priority of causes in the echo: USB > charger > battery (docs/board.md G23).
   const EchoStatus was = block_;
   block_ = env.usb ? EchoStatus::BlockedUsb
@@ -255,9 +260,15 @@ void EchoModel::begin_tick(const Env& env) {
     // G16 / motion.md §7: blocking drops every pending move; the axes brake to a stop. What
     // ended a motion before the block (a user stop, the watchdog ending a jog) is the "last
     // event" G16 clears on leaving BLOCKED, also when the axis still brakes then
-    // (docs/echo-model.md "Decisions").
+    // (docs/echo-model.md "Decisions"). It is decided now, not when the braking ends: an
+    // answer to a repeat during the block shows it (docs/protocol.md "What a repeat answers").
     for (auto& x : ax_) {
+      // A move whose carriage comes to rest on its target in the tick the block starts reached
+      // it, as with a stop in the tick of arrival (docs/echo-model.md "Decisions").
+      if (x.act == Activity::Position) x.stopped_move_now = true;
       if (x.act != Activity::Idle) x.act = Activity::Braking;
+      if (x.stop_requested) x.ended = Ended::Stopped;
+      else if (x.link_ended) x.ended = Ended::LinkLost;
       x.stop_requested = false;
       x.link_ended = false;
     }
@@ -271,11 +282,6 @@ void EchoModel::begin_tick(const Env& env) {
   }
   // Tab. 7-2 / G15: only Data Session open (STATUS1 = 0, STATUS2 = 1) carries commands.
   session_ = !env.ble_status1 && env.ble_status2;
-  for (auto& x : ax_) {
-    x.refused.reset();
-    x.started_now = false;
-    x.stopped_move_now = false;
-  }
   // docs/board.md "Button and shutdown": the off request is served before the tick's frames.
   if (env.button && !button_was_ && !off_requested_) {
     off_requested_ = true;
@@ -288,6 +294,7 @@ void EchoModel::begin_tick(const Env& env) {
   out_.clear();
   dispatched_this_tick_ = false;
   taken_this_tick_ = false;
+  fate_.reset();
 }
 
 // G24: the axes get a ramped stop; motion commands are refused until wake.
@@ -367,6 +374,7 @@ void EchoModel::frame(const FrameEvent& ev) {
   have_seq_ = true;
   last_seq_ = ev.frame.seq;
   taken_this_tick_ = true;
+  taken_frame_ = ev.frame;
   if (block_ != EchoStatus::Idle) {  // §7.5.2: commands cannot act while blocked; answered
     p.blocked = true;
     events_.push_back(p);
@@ -812,8 +820,15 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
 
     if (block_ != EchoStatus::Idle) {
       if (moving && !was_moving) violations_.push_back("axis " + std::string(a == 0 ? "x" : "y") + " started while blocked");
-      if (!moving) x.act = Activity::Idle;
-      x.ended = Ended::None;
+      // The event that ended the last motion stands until G16 clears it at the block's end;
+      // the answer to a repeat shows it meanwhile (docs/protocol.md "What a repeat answers").
+      // The braking under the block may end on a switch, or, in the block's first tick, on the
+      // move's own target (block entry above).
+      if (!moving && x.act != Activity::Idle) {
+        if (was_moving && endstop_in_dir) x.ended = Ended::Endstop;
+        else if (x.stopped_move_now && m.pos == x.target) x.ended = Ended::Reached;
+        x.act = Activity::Idle;
+      }
       x.last = m;
       continue;
     }
@@ -889,6 +904,7 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
   if (taken_this_tick_) {
     last_block_ = block_;
     for (std::size_t a = 0; a < kAxes; ++a) last_refused_[a] = ax_[a].refused;
+    fate_ = FrameFate{taken_frame_, block_ != EchoStatus::Idle, last_refused_};
   }
   for (std::size_t i = 0; i < events_.size(); ++i) out_.push_back(build(i));
   return out_;
@@ -916,18 +932,19 @@ Expected EchoModel::build(std::size_t i) const {
     ExpectedAxis& o = e.axis[a];
     o.position = true;
     o.pos_usteps = x.last.pos;
-    // board.md "Echo content": BLOCKED_* > FAULT > COMMAND_REFUSED > SLEEPING > moving
+    // board.md "Echo content": BLOCKED_* > COMMAND_REFUSED > FAULT > SLEEPING > moving
     // (HOMING / ACCEL / CONST / DECEL) > the event that ended the last motion > IDLE.
-    // An answer to a repeat or an older frame tells the block and refusals of the last frame
-    // taken (protocol.md "Delivery"); the state is today's.
-    const EchoStatus block = block_ != EchoStatus::Idle ? block_ : (ev.replay ? last_block_ : EchoStatus::Idle);
+    // An answer to a repeat or an older frame tells the block and refusals the last frame
+    // taken had when it was taken (protocol.md "Delivery"), not a block of today: the client
+    // reads BLOCKED_* as "did not take effect". The state is today's.
+    const EchoStatus block = ev.replay ? last_block_ : block_;
     const std::optional<CommandId> refused = ev.replay ? last_refused_[a] : x.refused;
     if (block != EchoStatus::Idle) {
       o.status = block;
-    } else if (fault_ != 0) {
-      o = {EchoStatus::Fault, fault_, false, 0};
     } else if (refused) {
       o = {EchoStatus::CommandRefused, static_cast<std::int32_t>(*refused), false, 0};
+    } else if (fault_ != 0) {
+      o = {EchoStatus::Fault, fault_, false, 0};
     } else if (sleeping_) {
       o.status = EchoStatus::Sleeping;
     } else if (x.last.phase != Phase::Stop) {

@@ -215,6 +215,9 @@ void Client::report(const Pending& p, Outcome o, std::int64_t now_us, const InFl
     r.seq = f->frame.seq;
     r.first_sent_us = f->first_sent_us;
     r.transmissions = f->transmissions;
+    for (std::size_t j = 0; j < f->commands.size(); ++j) {
+      if (f->commands[j].ticket == p.ticket) r.part = static_cast<std::uint8_t>(f->part_of[j]);
+    }
   }
   if (part != nullptr) {
     r.status = part->status;

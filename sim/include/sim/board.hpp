@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <cstdint>
 #include <fstream>
 #include <memory>
@@ -310,6 +311,7 @@ class SimBoard {
   // each of them (docs/sim.md "Echo checks").
   std::vector<std::uint64_t> echo_digests_;
   std::uint64_t frames_taken_ = 0;
+  std::map<std::uint16_t, model::echo::FrameFate> fates_;  // by seq, the last frame taken with it
   std::uint64_t taken_digest_ = kFnvBasis;
 };
 

@@ -53,6 +53,7 @@ struct DeliveryStats {
   std::uint32_t submitted = 0, delivered = 0, failed = 0;
   std::uint64_t new_frames = 0, retransmissions = 0, given_up = 0, frames_answered = 0, frames_taken = 0;
   std::vector<client::Report> reports;   // every settled command, in settling order
+  std::uint64_t outcomes_checked = 0;    // reports compared with the board's fate of their frame
 };
 
 struct BoardVerdict {

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,13 +30,16 @@ namespace ap::model::echo {
 using EchoBytes = std::array<std::uint8_t, codec::kEchoLength>;
 
 // The link layer as docs/board.md "One cycle" step 3 describes it: bytes stored by the
-// receive interrupt wait in a ring and are framed at the next tick, at most four frame
-// events per tick (kMaxEchoesPerCycle); the rest wait. The framer itself is core/frame's
+// receive interrupt wait in a ring and are framed at the next tick; how many frame events a
+// tick takes is the model's business (at most four answered, at most one new frame taken), so
+// the twin hands them out one at a time and the rest wait. The framer itself is core/frame's
 // (verified by properties/protocol); what a frame means is the model's business.
 class LinkTwin {
  public:
   void rx(std::span<const std::uint8_t> bytes);
-  std::vector<FrameEvent> tick();
+  // The next frame event in the ring (its bytes consumed), or nullopt when the ring holds no
+  // complete one (the bytes read so far stay in the framer).
+  std::optional<FrameEvent> next();
 
  private:
   std::vector<std::uint8_t> ring_;

@@ -142,6 +142,14 @@ struct Expected {
   std::string why;  // the model's reasoning, for the mismatch text
 };
 
+// What became of one frame the board took (docs/protocol.md "Outcomes"): run, or answered
+// BLOCKED_* without running; and per part the command the axis refused, if any.
+struct FrameFate {
+  frame::CommandFrame frame{};
+  bool blocked = false;
+  std::array<std::optional<codec::CommandId>, kAxes> refused{};
+};
+
 struct Mismatch {
   std::string text;
 };
@@ -176,6 +184,13 @@ class EchoModel {
   bool path_running() const { return path_.running; }
   Ended ended(std::size_t a) const { return ax_[a].ended; }
   bool blocked() const { return block_ != codec::EchoStatus::Idle; }
+  // This tick so far: frame events answered, and whether a new frame was taken (the board
+  // takes at most one per tick: docs/protocol.md "Two frames in one cycle").
+  std::size_t answers_this_tick() const { return events_.size(); }
+  bool took_frame_this_tick() const { return taken_this_tick_; }
+  // What the model says became of the frame taken this tick (valid after end_tick): the
+  // ground truth the outcome oracle compares the client's reports with.
+  const std::optional<FrameFate>& fate_this_tick() const { return fate_; }
   bool sleeping() const { return sleeping_; }
   std::uint32_t ticks() const { return ticks_; }
   // The temperature and angle the model expects the board to report now (m°C before the
@@ -274,6 +289,8 @@ class EchoModel {
   bool taken_this_tick_ = false;
   codec::EchoStatus last_block_ = codec::EchoStatus::Idle;           // of the last frame taken
   std::array<std::optional<codec::CommandId>, kAxes> last_refused_{};  // "
+  std::optional<FrameFate> fate_;  // of the frame taken this tick
+  frame::CommandFrame taken_frame_{};
   std::uint32_t ticks_ = 0;
   bool dispatched_this_tick_ = false;
 

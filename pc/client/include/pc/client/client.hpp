@@ -57,6 +57,7 @@ struct Report {
   Command command{};
   Outcome outcome = Outcome::Done;
   std::optional<std::uint16_t> seq;  // the frame that carried it (none if never sent)
+  std::optional<std::uint8_t> part;  // the part of that frame it rode in: 0 X, 1 Y
   std::int64_t issued_us = 0;
   std::optional<std::int64_t> first_sent_us;
   std::int64_t settled_us = 0;        // when the outcome was known
