@@ -42,7 +42,9 @@ TEST(dds_scenario, BundledScenariosParseAndRoundTrip) {
                                        "link_loss_jog",  "homing",          "faulty_link_jog",
                                        "many_boards",    "many_boards_faults", "gcode_thesis",
                                        "sensors",        "ble_led",         "homing_power_cycle",
-                                       "positioning_slow", "shutdown_button"};
+                                       "positioning_slow", "shutdown_button",
+                                       // docs/protocol.md "Delivery", rule 6: the board ahead of the client from the start
+                                       "board_ahead_of_the_client"};
   const std::set<std::string> regressions{"link_all_faults", "link_corrupt_delay", "link_corrupt_drop",
                                           "link_corrupt_reorder", "link_drop_stop_lost",
                                           // docs/protocol.md "Delivery": a repeat tells the outcome its frame had
