@@ -46,16 +46,15 @@ enum class Scope : std::uint8_t { Axis, Unit };
 // stop of the same axis cancels the command while it is still queued. Rule 5 ("Stop first")
 // names the motion commands goto, move, home and jog; the paragraph under the table adds that
 // goto_slow and move_slow are "superseded and stopped the same way" as goto and move. Nothing
-// else is cancelled: not the parameter sets (they do not move the axis), not nop, not a stop (a
-// second stop rides with the first, rule 5), and not the coordinated path commands line,
-// centre, arc_cw, arc_ccw, path_end: rule 5 does not name them, so they leave after the stop.
-// (docs/cnc.md "Stops" has the board drop its path queue on a stop of either axis; what
-// segments still queued in the client should do is not written down. The model keeps the
-// document's list as written.) A switch with no default, so a new table row does not compile
-// here (-Werror=switch) until it is classified.
+// else of its axis is cancelled: not the parameter sets (they do not move the axis), not nop,
+// not a stop (a second stop rides with the first, rule 5). The coordinated path commands line,
+// centre, arc_cw, arc_ccw (either part) and path_end are cancelled by a stop of either axis
+// (rule 5: "on a stop of *either* axis"; docs/cnc.md "Stops"). A switch with no default, so a
+// new table row does not compile here (-Werror=switch) until it is classified.
 struct Row {
   Scope scope;
-  bool cancelled_by_stop;
+  bool cancelled_by_stop;     // by a stop of its own axis
+  bool path = false;          // by a stop of either axis
 };
 
 constexpr Row row(CommandId id) {
@@ -79,11 +78,11 @@ constexpr Row row(CommandId id) {
     case CommandId::PeriphOn: return {Scope::Unit, false};       // 16 wake
     case CommandId::SaveParams: return {Scope::Unit, false};     // 17 save
     case CommandId::ClearFault: return {Scope::Unit, false};     // 18 clear
-    case CommandId::PathLine: return {Scope::Axis, false};       // 19 line
-    case CommandId::PathCentre: return {Scope::Axis, false};     // 20 centre
-    case CommandId::PathArcCw: return {Scope::Axis, false};      // 21 arc_cw
-    case CommandId::PathArcCcw: return {Scope::Axis, false};     // 22 arc_ccw
-    case CommandId::PathEnd: return {Scope::Unit, false};        // 23 path_end
+    case CommandId::PathLine: return {Scope::Axis, false, true};       // 19 line
+    case CommandId::PathCentre: return {Scope::Axis, false, true};     // 20 centre
+    case CommandId::PathArcCw: return {Scope::Axis, false, true};      // 21 arc_cw
+    case CommandId::PathArcCcw: return {Scope::Axis, false, true};     // 22 arc_ccw
+    case CommandId::PathEnd: return {Scope::Unit, false, true};        // 23 path_end
     case CommandId::GotoSlow: return {Scope::Axis, true};        // 24 goto_slow (note under the table)
     case CommandId::MoveSlow: return {Scope::Axis, true};        // 25 move_slow (note under the table)
   }
@@ -134,7 +133,7 @@ class Model {
     // Rule 5: "Motion commands of its axis (goto, move, home, jog) issued before it and still
     // queued end superseded" -- queued only: the frame in flight "may already have run".
     for (auto it = queue_.begin(); it != queue_.end();) {
-      if (it->cmd.part == c.part && row(it->cmd.id).cancelled_by_stop) {
+      if ((it->cmd.part == c.part && row(it->cmd.id).cancelled_by_stop) || row(it->cmd.id).path) {
         gone.push_back(it->ticket);
         it = queue_.erase(it);
       } else {

@@ -232,7 +232,8 @@ RC_GTEST_PROP(ProtocolClientRules, StopsSupersedeAndCommandsLeaveAsTheModelSays,
 
 // Every row of the table, issued for each axis (unit rows for the unit) behind a frame in
 // flight, then a stop of one axis: exactly the goto, move, home, jog, goto_slow and move_slow
-// of that axis are superseded (rule 5 and the note under the table), and the rest leave in
+// of that axis and the path's commands of both parts are superseded (rule 5 and the note
+// under the table), and the rest leave in
 // issue order behind the stop. Both axes, so a stop that cancels the other axis's commands
 // fails too.
 TEST(ProtocolClientRules, AStopSupersedesExactlyTheDocumentedMotionCommandsOfItsAxis) {
@@ -258,8 +259,10 @@ TEST(ProtocolClientRules, AStopSupersedesExactlyTheDocumentedMotionCommandsOfIts
         if (!seq) gone.insert(std::string(part_name(issued.at(t).part)) + " " + std::string(c::info(issued.at(t).id).key));
       }
       const std::string a = part_name(stopped);
+      // Rule 5: and the path's commands of both parts, which a stop of either axis cancels.
       EXPECT_EQ(gone, (std::set<std::string>{a + " jog", a + " goto", a + " move", a + " home", a + " goto_slow",
-                                             a + " move_slow"}));
+                                             a + " move_slow", "x line", "y line", "x centre", "y centre", "x arc_cw",
+                                             "y arc_cw", "x arc_ccw", "y arc_ccw", "unit path_end"}));
       while (h.model.in_flight() || h.model.queued() > 0) {
         h.poll();
         h.answer();

@@ -41,6 +41,13 @@ const char* to_string(Outcome o) {
 
 namespace {
 
+// docs/protocol.md rule 5: a stop of either axis stops the path, and the board drops its
+// queue (docs/cnc.md "Stops").
+bool path_command(c::CommandId id) {
+  return id == c::CommandId::PathLine || id == c::CommandId::PathCentre || id == c::CommandId::PathArcCw ||
+         id == c::CommandId::PathArcCcw || id == c::CommandId::PathEnd;
+}
+
 bool moves_axis(c::CommandId id) {
   return id == c::CommandId::Goto || id == c::CommandId::Move || id == c::CommandId::GotoSlow ||
          id == c::CommandId::MoveSlow || id == c::CommandId::Home || id == c::CommandId::Jog;
@@ -92,9 +99,10 @@ Ticket Client::submit(const Command& cmd, std::int64_t now_us) {
   }
   // A stop goes ahead of everything queued (behind other stops), and the motion commands of
   // its axis issued before it are cancelled: sent after the stop they would move the axis the
-  // user just stopped. The frame in flight is not touched: it may already have run.
+  // user just stopped; so are the path's commands, which move both. The frame in flight is not
+  // touched: it may already have run.
   for (auto it = queue_.begin(); it != queue_.end();) {
-    if (it->command.part == cmd.part && moves_axis(it->command.cmd.id)) {
+    if ((it->command.part == cmd.part && moves_axis(it->command.cmd.id)) || path_command(it->command.cmd.id)) {
       report(*it, Outcome::Superseded, now_us, nullptr, nullptr);
       it = queue_.erase(it);
     } else {
