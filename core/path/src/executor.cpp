@@ -149,11 +149,12 @@ Error Executor::add(const Segment& s, const Limits& lim) {
   if (scurve::plan(1, lim.motion).error != scurve::Error::None) return Error::BadLimits;
   q.motion = lim.motion;
   if (s.kind != Kind::Line) {
-    // docs/cnc.md "Speeds": on an arc of radius r (steps ~ moves) the centripetal acceleration
-    // v^2 / r stays within a_max: v <= sqrt(a_max r).
+    // docs/cnc.md "Speeds": on an arc of radius r (steps) the centripetal acceleration v^2 / r
+    // stays within a_max. v is counted in moves/s, and a move is up to sqrt(2) steps long (at
+    // 45 deg both axes step), so the move rate is capped at sqrt(a_max r / 2).
     const auto rs = rel(s.start, s.centre);
     const std::int64_t r = interp::isqrt64(static_cast<std::uint64_t>(std::int64_t{rs[0]} * rs[0] + std::int64_t{rs[1]} * rs[1]));
-    const std::uint64_t cap = interp::isqrt64(static_cast<std::uint64_t>(lim.motion.a_max) * static_cast<std::uint64_t>(r));
+    const std::uint64_t cap = interp::isqrt64(static_cast<std::uint64_t>(lim.motion.a_max) * static_cast<std::uint64_t>(r) / 2U);
     if (cap < static_cast<std::uint64_t>(q.motion.v_max)) q.motion.v_max = cap > 0 ? static_cast<std::int32_t>(cap) : 1;
   }
   bool tangent = false;

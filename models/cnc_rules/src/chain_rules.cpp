@@ -51,9 +51,10 @@ double arc_radius(const Segment& s) {
 double segment_cap(const Config& c, const Segment& s) {
   // docs/cnc.md "Speeds": the path runs at the axes' `fast`, capped at 100 000 moves/s; F does
   // not set the speed (the thesis ignores F, seed-003.md §2.5). On an arc of radius r steps
-  // the chain's v_max is further capped at sqrt(a_max r) [D].
+  // the chain's move rate is further capped at sqrt(a_max r / 2) [D]: a move is up to sqrt(2)
+  // steps long, so the real centripetal acceleration stays within a_max.
   double cap = std::min(c.v_max, 100000.0);
-  if (s.kind != Kind::Line) cap = std::min(cap, std::sqrt(c.a_max * arc_radius(s)));
+  if (s.kind != Kind::Line) cap = std::min(cap, std::sqrt(c.a_max * arc_radius(s) / 2.0));
   return cap;
 }
 
@@ -337,9 +338,9 @@ void ChainChecker::tick(const Point& pos, const std::array<std::int64_t, 2>& v_f
       const double ratio = ve * ve / (r * c_.a_max);
       max_centripetal_ = std::max(max_centripetal_, ratio);
       max_arc_ratio_ = std::max(max_arc_ratio_, v / caps_[hi]);
-      if (ratio > 2.0 * (1 + 1e-6) + kEps) {
+      if (ratio > 1.0 * (1 + 1e-6) + kEps) {
         std::ostringstream o;
-        o << "centripetal acceleration " << ve * ve / r << " on arc #" << hi << " (r " << r << ") above 2 a_max";
+        o << "centripetal acceleration " << ve * ve / r << " on arc #" << hi << " (r " << r << ") above a_max";
         fail("cap.centripetal", o.str());
       }
     }
