@@ -94,6 +94,7 @@ Motion motion_of(const board::Board& b) {
   // The path's progress (docs/echo-model.md "The coordinated path"): physics, not a verdict.
   m.path.active = b.path().active();
   m.path.queued = static_cast<std::uint32_t>(b.path().queued());
+  m.path.chain_running = b.path().status() == path::Status::Running || b.path().status() == path::Status::Stopping;
   return m;
 }
 

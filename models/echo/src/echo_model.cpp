@@ -628,7 +628,11 @@ void EchoModel::path_request_stop(PathStop why) {
   // A path standing (no chain moving: waiting to be closed, or between chains) has nothing to
   // brake: the stop drops its queue at once, so a command later in the same cycle finds no
   // path (docs/echo-model.md "The coordinated path").
-  if (why == PathStop::User && ax_[0].last.phase == Phase::Stop && ax_[1].last.phase == Phase::Stop) {
+  // Standing is observed, like every motion: no chain under way at the end of the last tick.
+  // A chain whose S-curve has begun brakes along it even before its first step (found by the
+  // board fuzz target: a stop two ticks after path_end, with coarse steps, no step yet).
+  if (why == PathStop::User && !path_.chain_running && ax_[0].last.phase == Phase::Stop &&
+      ax_[1].last.phase == Phase::Stop) {
     path_finish(path_.moved ? Ended::Stopped : Ended::None);
   }
 }
@@ -767,6 +771,7 @@ void EchoModel::path_frame(const frame::CommandFrame& f) {
 
 void EchoModel::path_end_tick(const Motion& motion) {
   path_.queued = motion.path.queued;
+  path_.chain_running = motion.path.chain_running;
   if (motion.path.active && !path_.running) {
     violations_.push_back("the path is active at tick " + std::to_string(ticks_) + " with no accepted segment");
   }

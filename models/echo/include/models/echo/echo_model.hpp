@@ -88,6 +88,9 @@ struct AxisMotion {
 struct PathMotion {
   bool active = false;
   std::uint32_t queued = 0;
+  // A chain is under way: its S-curve clock runs (possibly still below one step per tick).
+  // A stop brakes such a chain; only a path with no chain under way is dropped at once.
+  bool chain_running = false;
 };
 struct Motion {
   std::array<AxisMotion, kAxes> axis{};
@@ -232,6 +235,7 @@ class EchoModel {
     std::array<std::int32_t, kAxes> centre_um{};  // the next arc's centre, absolute um
     PathStop stop = PathStop::None;         // why the running path is stopping
     bool moved = false;                     // an axis was seen moving since it was accepted
+    bool chain_running = false;             // observed at the end of the last tick
   };
   static bool is_path_part(codec::CommandId id);
   void path_frame(const frame::CommandFrame& f);
