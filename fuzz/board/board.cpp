@@ -409,7 +409,7 @@ struct Harness {
 
   void power_cut_op(Reader& r) {
     // Let bytes still queued from earlier ops be handled first, so the only FRAM write in
-    // the cut tick is the one this op asks for (the ring drains 4 frame events per tick).
+    // the cut tick is the one this op asks for (each tick drains up to 4 frame events, at most one new frame, from the ring).
     // Only a handled frame writes the FRAM, so the wait ends with the ring empty.
     for (std::size_t i = 0; i < kRxCapacity / kMaxEchoesPerCycle && rig->board->rx_pending() != 0 && budget_left(); ++i) tick();
     const std::size_t cut = static_cast<std::size_t>(r.u8()) * 2U;
