@@ -220,13 +220,13 @@ TEST(BoardPath, ABlockOnAnArcBrakesAlongThePathAndStaysStopped) {
 TEST(BoardPath, StepPulsesAddUpToTheCounterOnTinyCircles) {
   // Fine mechanics (0.2 mm/rev, 256 microsteps: 256 usteps/um) make the thesis's jerk large in
   // microsteps, so ten tangent circles of 1 um (256 usteps) run at about 35 moves per tick
-  // (the centripetal cap sqrt(a r)) and each axis reverses inside a tick: the STEP pulses of a tick share one DIR, so every pulse must still
+  // (the centripetal cap sqrt(a r / 2)) and each axis reverses inside a tick: the STEP pulses of a tick share one DIR, so every pulse must still
   // count (docs/cnc.md "Reversal inside a tick").
   PathRig p;
   // Speeds first: each set must convert within the axis ranges (<= 1e6 usteps/s, 1e7 usteps/s^2).
   p.r.send(C::SetSlowSpeed, 500, C::Nop, 0);
   p.r.send(C::SetFastSpeed, 2000, C::Nop, 0);  // not below the homing speed (docs/storage.md)
-  p.r.send(C::SetAccel, 19000, C::Nop, 0);
+  p.r.send(C::SetAccel, 38000, C::Nop, 0);  // 9.7e6 usteps/s^2: the arc cap sqrt(a r / 2) is ~35 moves per tick
   p.r.send(C::SetPitch, 200, C::Nop, 0);
   p.r.send(C::SetMicrosteps, 256, C::Nop, 0);
   p.tick(6);  // one new frame per tick (docs/protocol.md "Two frames in one cycle")
