@@ -204,11 +204,7 @@ Outcome decide_lia(z3::context& c, const z3::expr& hyps, const z3::expr& goal, u
     out.counterexample = "vacuous: the hypotheses have no model, so the proof would say nothing";
   } else if (r == z3::sat) {
     out.verdict = Verdict::Failed;
-    const z3::model m = s.get_model();
-    for (const auto& [label, term] : show) {
-      if (!out.counterexample.empty()) out.counterexample += ' ';
-      out.counterexample += label + "=" + m.eval(term, true).to_string();
-    }
+    out.counterexample = shown_in(s.get_model(), show);
   } else {
     out.verdict = Verdict::Unknown;
     out.counterexample = r == z3::unknown ? s.reason_unknown() : "hypotheses: unknown";

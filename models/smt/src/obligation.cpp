@@ -18,6 +18,15 @@ const char* verdict_name(Verdict v) {
   return "?";
 }
 
+std::string shown_in(const z3::model& m, const Shown& show) {
+  std::string text;
+  for (const auto& [label, term] : show) {
+    if (!text.empty()) text += ' ';
+    text += label + "=" + m.eval(term, true).to_string();
+  }
+  return text;
+}
+
 Outcome check_valid(z3::context& ctx, const z3::expr& claim, unsigned timeout_ms, const Shown& show) {
   Outcome out;
   const auto start = std::chrono::steady_clock::now();
@@ -31,11 +40,7 @@ Outcome check_valid(z3::context& ctx, const z3::expr& claim, unsigned timeout_ms
     out.verdict = Verdict::Proved;
   } else if (r == z3::sat) {
     out.verdict = Verdict::Failed;
-    const z3::model m = s.get_model();
-    for (const auto& [label, term] : show) {
-      if (!out.counterexample.empty()) out.counterexample += ' ';
-      out.counterexample += label + "=" + m.eval(term, true).to_string();
-    }
+    out.counterexample = shown_in(s.get_model(), show);
   } else {
     out.verdict = Verdict::Unknown;
     out.counterexample = s.reason_unknown();

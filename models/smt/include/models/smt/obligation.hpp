@@ -47,6 +47,9 @@ z3::context& shared_context();
 using Shown = std::vector<std::pair<std::string, z3::expr>>;
 Outcome check_valid(z3::context& ctx, const z3::expr& claim, unsigned timeout_ms, const Shown& show);
 
+// The `show` terms evaluated in a counterexample model: "label=value label=value ...".
+std::string shown_in(const z3::model& m, const Shown& show);
+
 // Runs an obligation, turning any escaping z3::exception into Unknown.
 Outcome run(const Obligation& o, unsigned timeout_ms);
 
