@@ -135,7 +135,9 @@ void mode_b_against_the_core(axis::Sem sem) {
         const std::uint32_t planned = m.remaining();
         ASSERT_EQ(tm.value(mv.remaining), planned) << "seq " << seq << " event " << ev << " angle " << angle;
         const std::int64_t n = tm.value(mv.steps);
-        if (planned > 0) ASSERT_EQ(mv.right.simplify().is_true(), m.dir() > 0);
+        if (planned > 0) {
+          ASSERT_EQ(mv.right.simplify().is_true(), m.dir() > 0);
+        }
         if (n < 0) ++behind;                        // a remainder behind the rotor: nothing turns
         if (m.position_half() != half_before) ++forward;  // start()'s drive change moved the rotor
         const bool stop_early = planned > 2 && pick(4) == 0;

@@ -200,7 +200,7 @@ class Model {
   // "Board" table). Returns false (and changes nothing) outside 1..500.
   bool board_at(std::uint16_t board_seq) {
     if (!flight_) return false;
-    const unsigned ahead = (board_seq + kSeqSpace - flight_->seq) % kSeqSpace;
+    const unsigned ahead = (unsigned{board_seq} + kSeqSpace - flight_->seq) % kSeqSpace;
     if (ahead < 1 || ahead > kSeqSpace / 2) return false;
     flight_->seq = after(board_seq);
     next_seq_ = after(flight_->seq);

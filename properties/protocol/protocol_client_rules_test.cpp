@@ -226,7 +226,7 @@ RC_GTEST_PROP(ProtocolClientRules, StopsSupersedeAndCommandsLeaveAsTheModelSays,
   }
   h.all_settled();
   std::size_t superseded = 0;
-  for (const auto& [t, seq] : h.settled) superseded += seq ? 0 : 1;
+  for (const auto& [t, seq] : h.settled) superseded += seq ? 0U : 1U;
   RC_CLASSIFY(superseded > 0, "some command superseded");
 }
 
