@@ -500,9 +500,7 @@ class Pc {
   // the run like a safety violation.
   void check_outcome(BoardPc& b, const client::Report& r, std::int64_t t) {
     std::optional<model::echo::FrameFate> fate;
-    const bool answered = r.outcome == client::Outcome::Done || r.outcome == client::Outcome::Refused ||
-                          r.outcome == client::Outcome::Blocked;
-    if (answered && r.seq) {
+    if (client::delivered(r.outcome) && r.seq) {  // done, refused, blocked: a frame answered it
       const std::string text = env(b, "probe fate." + std::to_string(*r.seq), t);
       if (text != "none") {
         fate = parse_fate(text);

@@ -94,7 +94,8 @@ Motion motion_of(const board::Board& b) {
   // The path's progress (docs/echo-model.md "The coordinated path"): physics, not a verdict.
   m.path.active = b.path().active();
   m.path.queued = static_cast<std::uint32_t>(b.path().queued());
-  m.path.chain_running = b.path().status() == path::Status::Running || b.path().status() == path::Status::Stopping;
+  const path::Status st = b.path().status();
+  m.path.chain_running = st == path::Status::Running || st == path::Status::Stopping;
   return m;
 }
 
