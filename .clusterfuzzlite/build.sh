@@ -33,14 +33,18 @@ fi
 targets=()
 for n in "${names[@]}"; do targets+=("fuzz_$n"); done
 cmake --build "$work" --parallel "${AP_JOBS:-2}" --target "${targets[@]}"
-while IFS=$'\t' read -r name group bin _replay _profile; do
+# A target's data sit in its profile's fuzz folder (the sixth column): corpus/<name>,
+# dict/<name or group>.dict, and the options beside its sources.
+while IFS=$'\t' read -r name group bin _replay _profile data; do
   cp "$bin" "$OUT/$name"
   # libFuzzer options (OSS-Fuzz's <target>.options, [libfuzzer] key = value), e.g. max_len.
-  if [[ -f $root/fuzz/$group/$name.options ]]; then cp "$root/fuzz/$group/$name.options" "$OUT/$name.options"; fi
-  for d in "$root/fuzz/dict/$name.dict" "$root/fuzz/dict/$group.dict"; do
+  for o in "$data/$group/$name.options" "$data/$name.options"; do
+    if [[ -f $o ]]; then cp "$o" "$OUT/$name.options"; break; fi
+  done
+  for d in "$data/dict/$name.dict" "$data/dict/$group.dict"; do
     if [[ -f $d ]]; then cp "$d" "$OUT/$name.dict"; break; fi
   done
-  corpus=$root/fuzz/corpus/$name
+  corpus=$data/corpus/$name
   if [[ -d $corpus ]] && [[ -n $(ls -A "$corpus") ]]; then
     rm -f "$OUT/${name}_seed_corpus.zip"
     if command -v zip >/dev/null; then (cd "$corpus" && zip -q -r "$OUT/${name}_seed_corpus.zip" .)

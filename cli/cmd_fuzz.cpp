@@ -1,11 +1,11 @@
 // axisproof fuzz: builds the fuzz preset (clang, libFuzzer + ASan + UBSan) and runs each
 // libFuzzer target in fork mode (crash-, timeout- and OOM-resistant) for a time budget with a
-// progress line, using fuzz/dict/<target or group>.dict when present. Afterwards:
-//   - new inputs are merged into fuzz/corpus/<target> with -merge=1 (only inputs that add
+// progress line, using fuzz/<profile>/dict/<target or group>.dict when present. Afterwards:
+//   - new inputs are merged into fuzz/<profile>/corpus/<target> with -merge=1 (only inputs that add
 //     coverage are kept);
 //   - each distinct finding (crash, leak, timeout, OOM; distinct = sanitizer summary plus the
 //     top project frames) is minimised with -minimize_crash and written to
-//     fuzz/regressions/<target>/<kind>-<sha1> with a one-line <kind>-<sha1>.txt summary; the
+//     fuzz/<profile>/regressions/<target>/<kind>-<sha1> with a one-line <kind>-<sha1>.txt summary; the
 //     replay ctest (label fuzz) then replays it in every preset;
 //   - out/fuzz/<target>/stats.txt records executions, exec/s, corpus size, coverage, findings.
 // Exit 1 when anything was found (or could not run), 0 otherwise; usage errors exit 2.
@@ -43,8 +43,8 @@ std::vector<FuzzTarget> read_fuzz_targets(const std::string& build, std::string_
     std::stringstream ss(line);
     std::string part;
     while (std::getline(ss, part, '\t')) f.push_back(part);
-    if (f.size() < 5 || f[4] != profile) continue;
-    out.push_back({f[0], f[1], f[2], f[3], f[4]});
+    if (f.size() < 6 || f[4] != profile) continue;
+    out.push_back({f[0], f[1], f[2], f[3], f[4], f[5]});
   }
   return out;
 }
@@ -100,7 +100,7 @@ const std::string kSanitizerEnv =
 struct Signature {
   std::string kind;     // crash, leak, timeout, oom
   std::string summary;  // "AddressSanitizer: heap-buffer-overflow", "libFuzzer: deadly signal", ...
-  std::string frames;   // "parse core/frame/src/frame.cpp:12 < LLVMFuzzerTestOneInput fuzz/..."
+  std::string frames;   // "parse core/xy/frame/src/frame.cpp:12 < LLVMFuzzerTestOneInput fuzz/..."
   bool reproduced = false;
   std::string key() const { return summary + " | " + frames; }
 };
@@ -118,7 +118,7 @@ Signature signature_of(const std::string& binary, const fs::path& input, const s
                                  if (s.summary.empty() && std::regex_search(line, m, summary_re)) s.summary = m[1].str();
                                  if (frames.size() < 3 && std::regex_match(line, m, frame_re)) {
                                    std::string file = m[2].str();
-                                   if (file.rfind(src, 0) == 0 && file.find("/fuzz/replay_main.cpp") == std::string::npos) {
+                                   if (file.rfind(src, 0) == 0 && file.find("/fuzz/kit/src/replay_main.cpp") == std::string::npos) {
                                      std::string fn = m[1].str();
                                      fn = fn.substr(0, fn.find('('));
                                      frames.push_back(fn + " " + file.substr(src.size()) + ":" + m[3].str());
@@ -166,8 +166,8 @@ FuzzStats fuzz_one(const FuzzTarget& t, const FuzzOptions& o) {
   const fs::path work = src / "out" / "fuzz" / t.name;
   const fs::path fresh = work / "new";
   const fs::path artifacts = work / "artifacts";
-  const fs::path corpus = src / "fuzz" / "corpus" / t.name;
-  const fs::path regressions = o.no_save ? work / "findings" : src / "fuzz" / "regressions" / t.name;
+  const fs::path corpus = fs::path(t.data) / "corpus" / t.name;
+  const fs::path regressions = o.no_save ? work / "findings" : fs::path(t.data) / "regressions" / t.name;
   std::error_code ec;
   fs::remove_all(fresh, ec);
   fs::remove_all(artifacts, ec);
@@ -176,7 +176,7 @@ FuzzStats fuzz_one(const FuzzTarget& t, const FuzzOptions& o) {
   fs::create_directories(corpus);
 
   std::string dict;
-  for (const auto& d : {src / "fuzz" / "dict" / (t.name + ".dict"), src / "fuzz" / "dict" / (t.group + ".dict")}) {
+  for (const auto& d : {fs::path(t.data) / "dict" / (t.name + ".dict"), fs::path(t.data) / "dict" / (t.group + ".dict")}) {
     if (fs::exists(d)) {
       dict = d.string();
       break;
@@ -422,7 +422,7 @@ std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
 }
 
 void add_fuzz(CLI::App& app) {
-  auto* sub = app.add_subcommand("fuzz", "Run the libFuzzer targets (fork mode), merge their corpora, minimise findings into fuzz/regressions");
+  auto* sub = app.add_subcommand("fuzz", "Run the libFuzzer targets (fork mode), merge their corpora, minimise findings into fuzz/<profile>/regressions");
   static std::vector<std::string> targets;
   static bool all = false;
   static FuzzOptions opts;
@@ -434,7 +434,7 @@ void add_fuzz(CLI::App& app) {
   sub->add_option("-j,--jobs", opts.jobs, "Parallel fuzzing processes (libFuzzer -fork=N, default 2)")->check(CLI::Range(1, 64));
   add_profile_option(sub, opts.profile);
   sub->add_flag("--no-save", opts.no_save,
-                "Leave fuzz/corpus and fuzz/regressions untouched: merged corpus and reproducers stay under out/fuzz/<target>/");
+                "Leave the corpora and regressions (fuzz/<profile>/) untouched: merged corpus and reproducers stay under out/fuzz/<target>/");
   sub->final_callback([] {
     if (targets.empty() && !all) {
       std::fprintf(stderr, "axisproof fuzz: name a target with --target T or use --all (see axisproof fuzz --help)\n");
@@ -455,7 +455,7 @@ void add_fuzz(CLI::App& app) {
     for (const auto& r : results) findings += r.findings;
     if (findings > 0) {
       std::printf("\naxisproof fuzz: %d finding(s); reproducers in %s\n", findings,
-                  opts.no_save ? "out/fuzz/<target>/findings/" : "fuzz/regressions/<target>/");
+                  opts.no_save ? "out/fuzz/<target>/findings/" : "fuzz/<profile>/regressions/<target>/");
     }
     exit_status() = ok && findings == 0 ? 0 : 1;
   });

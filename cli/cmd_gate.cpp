@@ -288,10 +288,10 @@ void run_parallel(std::size_t count, const std::function<void(std::size_t)>& job
 
 // Where one target's short run keeps its corpus copy, findings and logs, and its bundled corpus.
 std::string fuzz_out_dir(const FuzzTarget& t) { return gate_dir() + "/fuzz/" + t.name; }
-std::string fuzz_corpus_dir(const FuzzTarget& t) { return source_dir() + "/fuzz/corpus/" + t.name; }
+std::string fuzz_corpus_dir(const FuzzTarget& t) { return t.data + "/corpus/" + t.name; }
 
 // The short run of one target: the asan build's libFuzzer binary (ASan + UBSan) for `seconds`
-// over a scratch corpus seeded from fuzz/corpus/<t> (read-only), with its dictionary;
+// over a scratch corpus seeded from its corpus (fuzz/<profile>/corpus/<t>) (read-only), with its dictionary;
 // new inputs and reproducers stay under out/gate/fuzz/<t>/, its output in fuzz.log there.
 // Returns the exit status. Two targets run at once (run_parallel): the rates are those of a
 // shared machine, as every rate the gate reports.
@@ -303,7 +303,7 @@ int fuzz_short_run(const FuzzTarget& t) {
   fs::create_directories(dir + "/corpus");
   fs::create_directories(dir + "/findings");
   std::string dict;
-  for (const auto& d : {src + "/fuzz/dict/" + t.name + ".dict", src + "/fuzz/dict/" + t.group + ".dict"}) {
+  for (const auto& d : {t.data + "/dict/" + t.name + ".dict", t.data + "/dict/" + t.group + ".dict"}) {
     if (dict.empty() && fs::exists(d)) dict = d;
   }
   const std::string corpus = fuzz_corpus_dir(t);
@@ -492,8 +492,8 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
 }
 
 Outcome m4_stage(gate::Run& run, const std::string& log) {
-  if (g_profile->size_check.empty()) return {Result::NotRun, "the profile has no MCU size check yet"};
-  const int st = run_logged(std::string(g_profile->size_check) + " --out " + quote(release_dir()), log, R"(^total|^flash|m4-build:)");
+  const int st = run_logged("ci/m4-build --profile " + std::string(g_profile->name) + " --out " + quote(release_dir()), log,
+                            R"(^total|^flash|m4-build:)");
   const std::string table = release_dir() + "/" + std::string(g_profile->size_tag) + "-size";
   run.details.m4_size_md = slurp(table + ".md");
   const std::string txt = slurp(table + ".txt");
@@ -548,12 +548,12 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
   std::vector<int> host_st(names.size(), 0), image_st(names.size(), 0);
   run_parallel(names.size(), [&](std::size_t i) {
     const std::string name(names[i]);
-    const std::string scn = std::string(g_profile->scenarios) + "/" + name + ".scn";
+    const std::string scn = scenarios_dir(*g_profile) + "/" + name + ".scn";
     const std::string own = root + "/logs/" + name + ".log";
     std::error_code rm_ec;
     fs::remove(own, rm_ec);
-    host_st[i] = run_logged(self + " sim run " + quote(scn) + " --out " + quote(root + "/host"), own);
-    image_st[i] = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), own,
+    host_st[i] = run_logged(self + " sim run --profile " + std::string(g_profile->name) + " " + quote(scn) + " --out " + quote(root + "/host"), own);
+    image_st[i] = run_logged(self + " sim run --profile " + std::string(g_profile->name) + " " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), own,
                              "^scenario ");
   });
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -586,8 +586,8 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
   }
   bool repeatable = false;
   if (!shortest.empty()) {
-    const std::string scn = std::string(g_profile->scenarios) + "/" + shortest + ".scn";
-    const int again = run_logged(self + " sim run " + quote(scn) + " --target qemu --out " + quote(root + "/again"), log);
+    const std::string scn = scenarios_dir(*g_profile) + "/" + shortest + ".scn";
+    const int again = run_logged(self + " sim run --profile " + std::string(g_profile->name) + " " + quote(scn) + " --target qemu --out " + quote(root + "/again"), log);
     repeatable = again == 0 && slurp(root + "/again/" + shortest + "/trace.csv") == slurp(root + "/qemu/" + shortest + "/trace.csv");
     if (!repeatable) bad.push_back(shortest + " gave another trace the second time");
   }
@@ -709,16 +709,14 @@ void add_gate(CLI::App& app) {
       run.pass = run.pass && o.result == Result::Pass;
     }
     run.seconds = seconds_since(start);
-    // SVG plots of the bundled scenarios, if `axisproof sim` left any: the XY runs write
-    // out/sim/NAME/, another profile's out/sim/<profile>/NAME/; only this profile's are shown.
+    // SVG plots of the bundled scenarios, if `axisproof sim` left any: a profile's runs write
+    // out/sim/<profile>/NAME/; only this profile's are shown.
     if (fs::is_directory(src + "/out/sim", ec)) {
       for (const auto& e : fs::recursive_directory_iterator(src + "/out/sim", ec)) {
         if (e.path().extension() != ".svg") continue;
         const std::string rel = fs::relative(e.path(), src + "/out/sim").string();
         const std::string top = rel.substr(0, rel.find('/'));
-        const Profile* owner = top != "xy" ? find_profile(top) : nullptr;
-        const bool mine = owner != nullptr ? owner == g_profile : g_profile->name == "xy";
-        if (mine) run.details.plots.push_back("../sim/" + rel);
+        if (find_profile(top) == g_profile) run.details.plots.push_back("../sim/" + rel);
       }
       std::sort(run.details.plots.begin(), run.details.plots.end());
     }

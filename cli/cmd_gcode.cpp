@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "models/scurve/table3.hpp"
-#include "pc/gcode/program.hpp"
-#include "sim/run.hpp"
-#include "sim/scenario.hpp"
+#include "models/xy/scurve/table3.hpp"
+#include "pc/xy/gcode/program.hpp"
+#include "sim/xy/run.hpp"
+#include "sim/xy/scenario.hpp"
 
 namespace ap::cli {
 
@@ -60,29 +60,29 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-const char* kind_name(pcgcode::SegKind k) {
-  return k == pcgcode::SegKind::Line ? "line" : (k == pcgcode::SegKind::ArcCw ? "arc cw" : "arc ccw");
+const char* kind_name(xy_pcgcode::SegKind k) {
+  return k == xy_pcgcode::SegKind::Line ? "line" : (k == xy_pcgcode::SegKind::ArcCw ? "arc cw" : "arc ccw");
 }
 
 // An upper bound of the run: each segment rest to rest at 50 mm/s with 4 s of ramps.
-double duration_s(const pcgcode::Program& p) {
+double duration_s(const xy_pcgcode::Program& p) {
   double t = 2.0;
-  for (const pcgcode::Segment& s : p.segments) {
+  for (const xy_pcgcode::Segment& s : p.segments) {
     double steps = static_cast<double>(std::max(std::llabs(s.x1 - s.x0), std::llabs(s.y1 - s.y0))) / kStepUm;
-    if (s.kind != pcgcode::SegKind::Line) steps = 5.66 * std::hypot(static_cast<double>(s.x0 - s.cx), static_cast<double>(s.y0 - s.cy)) / kStepUm + 8;
+    if (s.kind != xy_pcgcode::SegKind::Line) steps = 5.66 * std::hypot(static_cast<double>(s.x0 - s.cx), static_cast<double>(s.y0 - s.cy)) / kStepUm + 8;
     t += steps / 1000.0 + 4.0;
   }
   return std::ceil(t);
 }
 
-void print_plan(const pcgcode::Program& p) {
+void print_plan(const xy_pcgcode::Program& p) {
   std::printf("segments (um):\n");
   for (std::size_t i = 0; i < p.segments.size(); ++i) {
     const auto& s = p.segments[i];
     std::printf("  %2zu line %3u %-7s (%lld, %lld) -> (%lld, %lld)", i + 1, s.line, kind_name(s.kind),
                 static_cast<long long>(s.x0), static_cast<long long>(s.y0), static_cast<long long>(s.x1),
                 static_cast<long long>(s.y1));
-    if (s.kind != pcgcode::SegKind::Line) std::printf(" centre (%lld, %lld)", static_cast<long long>(s.cx), static_cast<long long>(s.cy));
+    if (s.kind != xy_pcgcode::SegKind::Line) std::printf(" centre (%lld, %lld)", static_cast<long long>(s.cx), static_cast<long long>(s.cy));
     std::printf("%s\n", s.rapid ? " rapid" : "");
   }
   std::printf("junctions (look-ahead, docs/lookahead.md; the board keeps speed only through tangent ones):\n");
@@ -101,20 +101,20 @@ struct XY {
 
 // The commanded path (the program's geometry, arcs as true circles) and the executed one
 // (the board's step counters from path.csv), in mm.
-void write_path_svg(const std::string& out, const pcgcode::Program& p, const std::vector<XY>& done) {
+void write_path_svg(const std::string& out, const xy_pcgcode::Program& p, const std::vector<XY>& done) {
   std::vector<std::vector<XY>> cmd;
   for (const auto& s : p.segments) {
     std::vector<XY> poly;
     const auto mm = [](std::int64_t um) { return static_cast<double>(um) / 1000.0; };
     const double x0 = mm(s.x0), y0 = mm(s.y0), x1 = mm(s.x1), y1 = mm(s.y1);
-    if (s.kind == pcgcode::SegKind::Line) {
+    if (s.kind == xy_pcgcode::SegKind::Line) {
       poly = {{x0, y0}, {x1, y1}};
     } else {
       const double cx = mm(s.cx), cy = mm(s.cy);
       const double r = std::hypot(x0 - cx, y0 - cy);
       const double a0 = std::atan2(y0 - cy, x0 - cx);
       double a1 = std::atan2(y1 - cy, x1 - cx);
-      const bool cw = s.kind == pcgcode::SegKind::ArcCw;
+      const bool cw = s.kind == xy_pcgcode::SegKind::ArcCw;
       if (cw && a1 >= a0) a1 -= 2 * M_PI;
       if (!cw && a1 <= a0) a1 += 2 * M_PI;
       for (int k = 0; k <= 180; ++k) {
@@ -170,7 +170,7 @@ void write_path_svg(const std::string& out, const pcgcode::Program& p, const std
 
 int run_gcode(const GcodeOptions& opt) {
   if (opt.table3) {
-    std::fputs(model::scurve::table3_report().c_str(), stdout);
+    std::fputs(model::xy_scurve::table3_report().c_str(), stdout);
     return 0;
   }
   if (opt.file.empty()) {
@@ -181,13 +181,13 @@ int run_gcode(const GcodeOptions& opt) {
   if (!std::filesystem::is_regular_file(path) && std::filesystem::is_regular_file(source_dir() + "/" + path)) {
     path = source_dir() + "/" + path;
   }
-  pcgcode::Program prog;
+  xy_pcgcode::Program prog;
   try {
-    pcgcode::Options po;
-    po.dialect = opt.dialect == "thesis" ? gcode::Dialect::Thesis : gcode::Dialect::Tolerant;
+    xy_pcgcode::Options po;
+    po.dialect = opt.dialect == "thesis" ? xy_gcode::Dialect::Thesis : xy_gcode::Dialect::Tolerant;
     po.v_max_um_s = 50'000;
     po.v_jump_um_s = 500;
-    prog = pcgcode::translate(read_file(path), po, opt.file);
+    prog = xy_pcgcode::translate(read_file(path), po, opt.file);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "axisproof gcode: %s\n", e.what());
     return 2;
@@ -250,7 +250,7 @@ int run_gcode(const GcodeOptions& opt) {
 void add_gcode(CLI::App& app) {
   auto opt = std::make_shared<GcodeOptions>();
   auto* sub = app.add_subcommand("gcode", "Run a G-code program on the simulated XY platform (docs/cnc.md)");
-  sub->add_option("file", opt->file, "G-code file (e.g. scenarios/gcode/thesis.gcode)");
+  sub->add_option("file", opt->file, "G-code file (e.g. scenarios/xy/gcode/thesis.gcode)");
   sub->add_option("--dialect", opt->dialect, "thesis (strict N.. G.. syntax) or tolerant (grbl/LinuxCNC)")
       ->check(CLI::IsMember({"thesis", "tolerant"}));
   sub->add_option("--out", opt->out_root, "output root (default out/gcode)");

@@ -1,4 +1,4 @@
-// axisproof regs: the TMC2130 register map (from the one table in core/tmc2130) and a
+// axisproof regs: the TMC2130 register map (from the one table in core/xy/tmc2130) and a
 // decoder for captured 40-bit datagrams.
 #include "cli.hpp"
 
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "models/tmc2130/text.hpp"
+#include "models/xy/tmc2130/text.hpp"
 
 namespace ap::cli {
 
@@ -25,7 +25,7 @@ struct RegsOptions {
 }  // namespace
 
 void add_regs(CLI::App& app) {
-  namespace mt = ap::model::tmc2130;
+  namespace mt = ap::model::xy_tmc2130;
   auto opt = std::make_shared<RegsOptions>();
   auto* sub = app.add_subcommand("regs", "Print the TMC2130 register map and decode datagrams");
   sub->add_option("--format", opt->format, "text, csv (register,address,access,field,mask,shift,width,signed) or md")

@@ -19,7 +19,7 @@ namespace {
 // NAME, NAME.scn, or either under the tree or the profile's scenario folder.
 std::string scenario_path(const std::string& arg, const Profile& p) {
   namespace fs = std::filesystem;
-  const std::string dir = source_dir() + "/" + std::string(p.scenarios) + "/";
+  const std::string dir = source_dir() + "/" + scenarios_dir(p) + "/";
   for (const std::string& c : {arg, arg + ".scn", source_dir() + "/" + arg, source_dir() + "/" + arg + ".scn",
                                dir + arg, dir + arg + ".scn"}) {
     if (fs::is_regular_file(c)) return c;
@@ -98,12 +98,11 @@ void add_sim(CLI::App& app) {
   auto* run = sub->add_subcommand("run", "Run a scenario: the simulated PC (and, unless --join, the boards in-process)");
   static SimRunArgs r;
   static std::string run_profile;
-  r.out_root = "out/sim";
   run->add_option("scenario", r.scenario, "Scenario file (scenarios/NAME, with or without .scn)")->required();
   run->add_flag("--realtime", r.realtime, "Virtual time follows the wall clock (for watching)");
   run->add_option("--domain", r.domain, "DDS domain id (default: a free one is claimed)");
   run->add_flag("--join", r.join, "Join boards already running (axisproof sim board --domain N)");
-  run->add_option("--out", r.out_root, "Output root; board 0's files go to ROOT/NAME/")->default_val("out/sim");
+  run->add_option("--out", r.out_root, "Output root; board 0's files go to ROOT/NAME/ (default out/sim/<profile>)");
   run->add_option("--target", r.target, "host: the core in this process; qemu: the XY board's Cortex-M4 image under QEMU (docs/qemu.md)")
       ->default_val("host")
       ->check(CLI::IsMember({"host", "qemu"}));
@@ -118,6 +117,9 @@ void add_sim(CLI::App& app) {
     }
     SimRunArgs a = r;
     a.scenario = scenario_path(r.scenario, *p);
+    // Each profile's runs under out/sim/<profile>/NAME (the gate shows a profile's plots from
+    // there); a root given with --out is used as given.
+    if (a.out_root.empty()) a.out_root = "out/sim/" + std::string(p->name);
     exit_status() = p->sim_run(a);
   });
 }

@@ -10,10 +10,11 @@ namespace ap::cli {
 // One line of <build>/fuzz_targets.txt (written by ap_add_fuzz_target at configure time).
 struct FuzzTarget {
   std::string name;
-  std::string group;   // folder under fuzz/: the dictionary is fuzz/dict/<name or group>.dict
+  std::string group;   // its folder's name: the dictionary is <data>/dict/<name or group>.dict
   std::string binary;  // libFuzzer binary, "-" outside the fuzz preset
   std::string replay;  // plain replay driver
   std::string profile; // the firmware profile it belongs to (docs/profiles.md)
+  std::string data;    // its profile's fuzz folder: corpus/<name>, regressions/<name>, dict/
 };
 
 // Reads <build_dir>/fuzz_targets.txt, keeping the targets of one profile (its fifth column,
@@ -21,12 +22,12 @@ struct FuzzTarget {
 std::vector<FuzzTarget> read_fuzz_targets(const std::string& build_dir, std::string_view profile);
 
 struct FuzzOptions {
-  std::string profile = "xy";        // only this profile's targets
+  std::string profile;               // only this profile's targets (set by --profile)
   std::vector<std::string> targets;  // empty: every target of the profile
   int seconds = 60;                  // per target
   int jobs = 2;                      // libFuzzer -fork=N
-  // false: new inputs are merged into fuzz/corpus/<t> and reproducers go to
-  // fuzz/regressions/<t>; true: both stay under out/fuzz/<t>/ (the gate must not edit the tree).
+  // false: new inputs are merged into <data>/corpus/<t> and reproducers go to
+  // <data>/regressions/<t>; true: both stay under out/fuzz/<t>/ (the gate must not edit the tree).
   bool no_save = false;
 };
 
@@ -34,7 +35,7 @@ struct FuzzStats {
   std::string target;
   long long executions = 0;
   long long exec_per_s = 0;
-  long long corpus_files = 0;  // fuzz/corpus/<t> after the merge
+  long long corpus_files = 0;  // <data>/corpus/<t> after the merge
   long long coverage = 0;      // libFuzzer "cov:" (edges)
   int new_inputs = 0;          // added to the corpus by the merge
   int findings = 0;            // distinct crash signatures (new and already known)

@@ -1,10 +1,12 @@
 #pragma once
 // A firmware profile: what one controller gives the harness and how the harness's commands
 // reach it (docs/profiles.md). `axisproof sim`, `gate`, `fuzz`, `prove` and `frame` take
-// `--profile NAME` (default xy; `--profile list` prints the table) and touch the controller
-// only through its entry here. What the harness keeps generic needs no entry: a profile's
-// tests and fuzz targets carry its name as a ctest label and in fuzz_targets.txt (AP_PROFILE),
-// its mutants name it in their `Profile:` header.
+// `--profile NAME` (default: the profile declared DEFAULT; `--profile list` prints the table)
+// and touch the controller only through its entry here. The entry has two halves: what the
+// profile's declaration says (profiles/<name>.cmake: its name, controller, MCU, folders and
+// coverage folders), filled in by the table CMake generates, and its adapters (its
+// cli/<name>/profile.cpp). Its tests and fuzz targets carry its name as a ctest label and in
+// fuzz_targets.txt (AP_PROFILE), its mutants sit in ci/mutants/<name>.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -39,10 +41,19 @@ struct SimBoardArgs {
 };
 
 struct Profile {
+  // From the declaration (profiles/<name>.cmake); the adapter leaves them empty.
   std::string_view name;   // the --profile value, the ctest label, the mutants' Profile:
   std::string_view title;
   std::string_view seed;   // where its requirements come from
   std::string_view mcu;    // the target of its size check
+  bool is_default = false;
+  std::vector<std::string_view> dirs;  // every <layer>/<name> folder it has
+  // The folders whose line and branch coverage the gate requires: its core, protocol and PC
+  // folders and the shared folders it USES.
+  std::vector<std::string_view> coverage_paths;
+  // The name its libraries and size table get under out/release (<size_tag>/,
+  // <size_tag>-size.{txt,md}); ci/m4-build --profile <name> writes them.
+  std::string_view size_tag;
 
   // Its wire codec (frame decode/encode/doc). decode_* print one line per frame or problem
   // and return true when everything decoded. A part a profile has not brought yet is
@@ -52,8 +63,8 @@ struct Profile {
   int (*encode)(const std::vector<std::string>& tokens);  // nullptr: the profile has none
   void (*doc)();                                          // nullptr: the profile has none
 
-  // End to end: its bundled scenarios and its simulated board behind the DDS bus.
-  std::string_view scenarios;  // folder, from the top of the tree
+  // End to end: its simulated board behind the DDS bus (its bundled scenarios are in
+  // scenarios/<name>).
   int (*sim_run)(const SimRunArgs&);
   int (*sim_board)(const SimBoardArgs&);
 
@@ -62,12 +73,6 @@ struct Profile {
   std::vector<model::smt::Obligation> (*obligations)();
   std::string_view registry_tests;
 
-  // Gate: the folders (or files) whose line and branch coverage the gate requires, the
-  // command that cross-builds its core and checks its size against its MCU, and the name its
-  // libraries and size table get under out/release (<size_tag>/, <size_tag>-size.{txt,md}).
-  std::vector<std::string_view> coverage_paths;
-  std::string_view size_check;
-  std::string_view size_tag;
   // The scenarios the gate's firmware (QEMU) stage runs on the profile's bootable image
   // (docs/qemu.md); empty: the profile has no image yet and its gate has no such stage.
   std::vector<std::string_view> qemu_scenarios;
@@ -103,18 +108,22 @@ void set_run_options(const SimRunArgs& a, RunOptions& o) {
   o.log = &std::cerr;
 }
 
+// The declared profiles (generated from profiles/*.cmake: <build>/profiles/profiles.cpp).
 const std::vector<Profile>& profiles();
+// The generated table's constructor: an adapter's entry with its declaration filled in.
+Profile declared(Profile adapter, std::string_view name, std::string_view title, std::string_view seed,
+                 std::string_view mcu, std::string_view size_tag, bool is_default, std::vector<std::string_view> dirs,
+                 std::vector<std::string_view> coverage);
+// Its bundled scenarios' folder, from the top of the tree (scenarios/<name>).
+std::string scenarios_dir(const Profile& p);
 // nullptr for an unknown name (never after add_profile_option accepted it).
 const Profile* find_profile(std::string_view name);
 
-// Adds --profile to a subcommand (default xy, one of profiles() or `list`).
+// The profile declared DEFAULT (the first declared when none is).
+const Profile& default_profile();
+// Adds --profile to a subcommand (default: default_profile(); one of profiles() or `list`).
 void add_profile_option(CLI::App* sub, std::string& name);
 // The table `--profile list` prints: name, controller, requirements, MCU.
 void print_profiles();
-
-// Defined by each profile's adapter file (profile_<name>.cpp).
-Profile xy_profile();
-Profile unit3_profile();
-Profile hc08_profile();
 
 }  // namespace ap::cli

@@ -1,14 +1,36 @@
-// The profiles the harness knows (docs/profiles.md). A new controller adds one line here and
-// its adapter file, profile_<name>.cpp.
+// The profile table's lookups (docs/profiles.md). The table itself is generated from the
+// profiles' declarations (cmake/AxisproofProfiles.cmake).
 #include <cstdio>
+#include <stdexcept>
+#include <utility>
 
 #include "profile.hpp"
 
 namespace ap::cli {
 
-const std::vector<Profile>& profiles() {
-  static const std::vector<Profile> all = {xy_profile(), unit3_profile(), hc08_profile()};
-  return all;
+Profile declared(Profile adapter, std::string_view name, std::string_view title, std::string_view seed,
+                 std::string_view mcu, std::string_view size_tag, bool is_default, std::vector<std::string_view> dirs,
+                 std::vector<std::string_view> coverage) {
+  adapter.name = name;
+  adapter.title = title;
+  adapter.seed = seed;
+  adapter.mcu = mcu;
+  adapter.size_tag = size_tag;
+  adapter.is_default = is_default;
+  adapter.dirs = std::move(dirs);
+  adapter.coverage_paths = std::move(coverage);
+  return adapter;
+}
+
+std::string scenarios_dir(const Profile& p) { return "scenarios/" + std::string(p.name); }
+
+const Profile& default_profile() {
+  const auto& all = profiles();
+  if (all.empty()) throw std::logic_error("no profile is declared (profiles/*.cmake)");
+  for (const auto& p : all) {
+    if (p.is_default) return p;
+  }
+  return all.front();
 }
 
 const Profile* find_profile(std::string_view name) {
@@ -27,7 +49,7 @@ void add_profile_option(CLI::App* sub, std::string& name) {
   }
   // `--profile list` answers at once, before the subcommand's other options are checked.
   sub->add_option("--profile", name, "Firmware profile (" + known + "; `list` shows them, docs/profiles.md)")
-      ->default_val("xy")
+      ->default_val(std::string(default_profile().name))
       ->check(CLI::IsMember(names))
       ->each([](const std::string& v) {
         if (v == "list") {

@@ -3,7 +3,9 @@
 #   ap_core_library(<name> SOURCES ... [DEPS ...])
 #       A static library of the firmware core: no exceptions, no RTTI, and a post-build
 #       check that no object references the heap (operator new/delete, malloc, free, ...).
-#       DEPS may only name other core libraries or ap_codec (the layer rule).
+#       DEPS may only name other core libraries or the folder's AP_CORE_DEPS (the layer rule):
+#       a profile's core/<profile>/CMakeLists.txt may set AP_CORE_DEPS to its protocol's
+#       header-only layout library, which every core library of that folder then links.
 #   ap_add_test(<name> LABEL <unit|property|proof|fuzz|e2e> SOURCES ... [LIBS ...])
 #       A GoogleTest + RapidCheck executable whose tests ctest discovers with that label and
 #       the label of the profile they belong to (AP_PROFILE, below).
@@ -11,10 +13,11 @@
 #       The same two labels for tests made with add_test().
 #   ap_add_fuzz_target(<name> SOURCES ... [LIBS ...])
 #       In the fuzz preset: a libFuzzer binary fuzz_<name>. In every preset: a plain
-#       replay driver replay_<name> and a ctest (label fuzz) that replays
-#       fuzz/corpus/<name> and fuzz/regressions/<name>. Every target is listed in
-#       <build>/fuzz_targets.txt (name, group, fuzz binary or "-", replay binary, profile;
-#       tab-separated),
+#       replay driver replay_<name> and a ctest (label fuzz) that replays its corpus and
+#       regressions. A target's data sit in its profile's fuzz folder (AP_PROFILE_DIR,
+#       fuzz/<profile>): corpus/<name>, regressions/<name>, dict/<name or group>.dict.
+#       Every target is listed in <build>/fuzz_targets.txt (name, group, fuzz binary or "-",
+#       replay binary, profile, data folder; tab-separated),
 #       which `axisproof fuzz`, ci/nightly-fuzz and .clusterfuzzlite/build.sh read.
 #   <build>/core_libs.txt lists each core library and its archive (the Cortex-M4 size table
 #   and symbol check read it).
@@ -23,7 +26,7 @@
 # belong to, set by the folder (or inherited from its parent): `xy`, or `harness` for the
 # harness's own checks. The gate selects a profile's tests by this label (ctest -L '^xy$').
 # A test or fuzz target defined where it is unset is a configure error.
-# AP_MCU_ONLY (the m4 preset): only protocol/codec, core and firmware/m4 are configured;
+# AP_MCU_ONLY (the m4 preset): only protocol/xy/codec, core and firmware/xy are configured;
 # ap_add_test, ap_add_fuzz_target and ap_add_bench do nothing.
 # AP_FUZZ_ENGINE (set by .clusterfuzzlite/build.sh from $LIB_FUZZING_ENGINE): link flags of an
 # external fuzzing engine, used instead of -fsanitize=fuzzer.
@@ -33,6 +36,8 @@
 # and (with AP_COVERAGE) the coverage report; the fuzz preset stays the optimised one for
 # long fuzzing runs (`axisproof fuzz`).
 
+# The fuzz kit's folder (the replay driver; fuzz/kit, or the installed package's copy).
+set(AP_FUZZ_KIT_DIR ${CMAKE_SOURCE_DIR}/fuzz/kit CACHE INTERNAL "")
 option(AP_CFL_CHECK "Register the ctest that runs .clusterfuzzlite/build.sh locally (clang builds)" ON)
 option(AP_FUZZ_BINARIES "Build the libFuzzer binaries fuzz_<name> in a non-fuzz preset (clang)" OFF)
 if(AP_FUZZ_BINARIES AND NOT AP_FUZZ AND NOT AP_MCU_ONLY)
@@ -48,14 +53,14 @@ set(AP_CORE_HEADER_LIBS "" CACHE INTERNAL "header-only core libraries")
 function(ap_core_library name)
   cmake_parse_arguments(A "" "" "SOURCES;DEPS" ${ARGN})
   foreach(dep IN LISTS A_DEPS)
-    if(NOT dep STREQUAL "ap_codec" AND NOT dep IN_LIST AP_CORE_LIBS AND NOT dep IN_LIST AP_CORE_HEADER_LIBS)
-      message(FATAL_ERROR "layer rule: core library ${name} may not depend on ${dep} (only core libraries and ap_codec)")
+    if(NOT dep IN_LIST AP_CORE_DEPS AND NOT dep IN_LIST AP_CORE_LIBS AND NOT dep IN_LIST AP_CORE_HEADER_LIBS)
+      message(FATAL_ERROR "layer rule: core library ${name} may not depend on ${dep} (only core libraries and ${AP_CORE_DEPS})")
     endif()
   endforeach()
   add_library(${name} STATIC ${A_SOURCES})
   target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
   target_compile_options(${name} PRIVATE ${AP_CORE_FLAGS})
-  target_link_libraries(${name} PUBLIC ap_codec ${A_DEPS})
+  target_link_libraries(${name} PUBLIC ${AP_CORE_DEPS} ${A_DEPS})
   add_custom_command(TARGET ${name} POST_BUILD
     COMMAND ${CMAKE_COMMAND} -E env NM=${CMAKE_NM} ${CMAKE_SOURCE_DIR}/ci/check-no-heap $<TARGET_FILE:${name}>
     COMMENT "heap check: ${name}" VERBATIM)
@@ -133,14 +138,18 @@ function(ap_add_fuzz_target name)
   cmake_parse_arguments(A "" "" "SOURCES;LIBS" ${ARGN})
   _ap_require_profile(${name})
   get_filename_component(_group ${CMAKE_CURRENT_SOURCE_DIR} NAME)
-  add_executable(replay_${name} ${A_SOURCES} ${CMAKE_SOURCE_DIR}/fuzz/replay_main.cpp)
-  target_link_libraries(replay_${name} PRIVATE ${A_LIBS})
+  if(NOT AP_PROFILE_DIR)
+    message(FATAL_ERROR "ap_add_fuzz_target(${name}): not in a profile's fuzz folder (fuzz/<profile>)")
+  endif()
+  set(_data ${AP_PROFILE_DIR})
+  add_executable(replay_${name} ${A_SOURCES} ${AP_FUZZ_KIT_DIR}/src/replay_main.cpp)
+  target_link_libraries(replay_${name} PRIVATE ${A_LIBS} ap_fuzz_kit)
   add_test(NAME fuzz.${name}.replay
-           COMMAND replay_${name} ${CMAKE_SOURCE_DIR}/fuzz/corpus/${name} ${CMAKE_SOURCE_DIR}/fuzz/regressions/${name})
+           COMMAND replay_${name} ${_data}/corpus/${name} ${_data}/regressions/${name})
   set_tests_properties(fuzz.${name}.replay PROPERTIES LABELS "fuzz;${AP_PROFILE}")
   if(AP_FUZZ OR AP_FUZZ_BINARIES)
     add_executable(fuzz_${name} ${A_SOURCES})
-    target_link_libraries(fuzz_${name} PRIVATE ${A_LIBS})
+    target_link_libraries(fuzz_${name} PRIVATE ${A_LIBS} ap_fuzz_kit)
     if(AP_FUZZ_ENGINE)
       separate_arguments(_engine UNIX_COMMAND "${AP_FUZZ_ENGINE}")
       target_link_options(fuzz_${name} PRIVATE ${_engine})
@@ -152,7 +161,7 @@ function(ap_add_fuzz_target name)
   else()
     set(_fuzz_bin -)
   endif()
-  set_property(GLOBAL APPEND PROPERTY AP_FUZZ_LIST_LINES "${name}\t${_group}\t${_fuzz_bin}\t$<TARGET_FILE:replay_${name}>\t${AP_PROFILE}")
+  set_property(GLOBAL APPEND PROPERTY AP_FUZZ_LIST_LINES "${name}\t${_group}\t${_fuzz_bin}\t$<TARGET_FILE:replay_${name}>\t${AP_PROFILE}\t${_data}")
 endfunction()
 
 include(GoogleTest)
@@ -172,6 +181,7 @@ function(ap_add_bench name)
     set_target_properties(${name} PROPERTIES EXCLUDE_FROM_ALL ON)
   endif()
   set_property(GLOBAL APPEND PROPERTY AP_BENCHMARKS $<TARGET_FILE:${name}>)
+  add_dependencies(benchmarks ${name})
 endfunction()
 
 # Written once the whole tree is configured (deferred to the end of the top-level directory).
@@ -187,6 +197,9 @@ function(_ap_write_lists)
     string(APPEND _text "${_lib}\t$<TARGET_FILE:${_lib}>\n")
   endforeach()
   file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/core_libs.txt CONTENT "${_text}")
+  get_property(_images GLOBAL PROPERTY AP_FIRMWARE_IMAGES)
+  string(REPLACE ";" "\n" _images "${_images}")
+  file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/firmware_images.txt CONTENT "${_images}\n")
   # .clusterfuzzlite/build.sh must keep working with the standard OSS-Fuzz variables; this
   # runs it the way ClusterFuzzLite would, with the local clang and libFuzzer (asan and fuzz
   # presets; not in cov, which has no sanitizer).

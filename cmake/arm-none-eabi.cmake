@@ -1,5 +1,5 @@
 # Cross toolchain for the Cortex-M4 build (m4 preset): Debian's gcc-arm-none-eabi 12.2 with
-# newlib. The core libraries, and for the XY profile the linked images of firmware/m4 (their own
+# newlib. The core libraries, and for the XY profile the linked images of firmware/xy (their own
 # startup code and linker scripts, -nostartfiles; docs/qemu.md).
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)

@@ -1,4 +1,4 @@
-// The HC08 unit (core/hc08_board) driven by button sequences (docs/hc08.md). Each input byte:
+// The HC08 unit (core/hc08/board) driven by button sequences (docs/hc08.md). Each input byte:
 //   0x00-0x9F  key (b % 5, or one of the unused codes when b >= 0x50) held for 20..51 ms of
 //              scans with bounce at both ends, then released for 25 ms; main loop after each ms
 //   0xA0-0xFF  (b - 0x9F) x 16 timer periods of running time
@@ -12,7 +12,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/hc08_board/board.hpp"
+#include "core/hc08/board/board.hpp"
 #include "models/hc08/angle_model.hpp"
 #include "models/hc08/menu_model.hpp"
 

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <span>
 
-#include "protocol/unit3_wire/dialect.hpp"
+#include "protocol/unit3/wire/dialect.hpp"
 
 namespace {
 

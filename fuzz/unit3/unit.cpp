@@ -1,4 +1,4 @@
-// The unit's firmware (core/unit3_board) driven by bytes, the stick, endstops, buttons, time
+// The unit's firmware (core/unit3/board) driven by bytes, the stick, endstops, buttons, time
 // and power cycles (docs/unit3.md "The board"). The input is a list of operations:
 //   0x00-0x9F  one byte to the UART (the byte itself, 0x00-0x7F, or the next input byte)
 //   0xA0-0xAF  the stick of axis (op & 3) % 3 to the next two bytes (little end first)
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "core/unit3_board/unit.hpp"
+#include "core/unit3/board/unit.hpp"
 #include "models/unit3/pc_view.hpp"
 #include "replies.hpp"
 

@@ -1,4 +1,4 @@
-// The HC08 unit's angle arithmetic (core/hc08_motor, core/hc08_board) against an independent
+// The HC08 unit's angle arithmetic (core/hc08/motor, core/hc08/board) against an independent
 // oracle: the reference model models/hc08/angle_model.hpp, written from the thesis (seed 002,
 // 002_*.txt l. 462-463 Tab. 3.1, l. 724, l. 768, l. 1063) and docs/hc08.md "Angle arithmetic"
 // without the unit's code, and the rotor's position read back from the coils alone
@@ -11,8 +11,8 @@
 
 #include <cstdint>
 
-#include "core/hc08_board/board.hpp"
-#include "core/hc08_motor/motor.hpp"
+#include "core/hc08/board/board.hpp"
+#include "core/hc08/motor/motor.hpp"
 #include "models/hc08/angle_model.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// The HC08 unit's firmware (core/hc08_board) against seed 002 §5.2 and docs/hc08.md "Menu",
+// The HC08 unit's firmware (core/hc08/board) against seed 002 §5.2 and docs/hc08.md "Menu",
 // "Keypad", "Queue": key decoding, debounce, the queue's full policy, and a stateful test of
 // the menu and display against the reference model (models/hc08).
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/hc08_board/board.hpp"
+#include "core/hc08/board/board.hpp"
 #include "models/hc08/angle_model.hpp"
 #include "models/hc08/menu_model.hpp"
 

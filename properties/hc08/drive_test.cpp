@@ -1,4 +1,4 @@
-// Excitation tables and the sequencer (core/hc08_drive) against seed 002 §1.7 and docs/hc08.md
+// Excitation tables and the sequencer (core/hc08/drive) against seed 002 §1.7 and docs/hc08.md
 // "Excitation". Adjacency is judged on the four coils in rotational order, worked out here.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/hc08_drive/drive.hpp"
+#include "core/hc08/drive/drive.hpp"
 
 namespace {
 

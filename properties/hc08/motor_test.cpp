@@ -1,4 +1,4 @@
-// The motor (core/hc08_motor) against seed 002 §5.3 and docs/hc08.md "Motor", "Ramp", "Mode B".
+// The motor (core/hc08/motor) against seed 002 §5.3 and docs/hc08.md "Motor", "Ramp", "Mode B".
 // Start frequencies 280 / 560 Hz and maxima 800 / 1700 Hz [T Tab. 3.1]; BUSCLK 2 457 600 Hz.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "core/hc08_motor/motor.hpp"
+#include "core/hc08/motor/motor.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // The hc08 profile's proof obligations (models/smt/src/hc08_obligations.cpp), each PROVED, and
 // the arithmetic they state checked against the core's, so the proofs speak about the code that
-// runs: the ramp (core/hc08_timer) on every period the ramp can hold, mode B's position
-// (core/hc08_motor) on random sequences of moves, drive changes and stopped runs of a real Motor.
+// runs: the ramp (core/hc08/timer) on every period the ramp can hold, mode B's position
+// (core/hc08/motor) on random sequences of moves, drive changes and stopped runs of a real Motor.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -10,10 +10,10 @@
 #include <random>
 #include <string>
 
-#include "core/hc08_motor/motor.hpp"
-#include "core/hc08_timer/timer.hpp"
-#include "models/smt/axis_kernels.hpp"
-#include "models/smt/modules.hpp"
+#include "core/hc08/motor/motor.hpp"
+#include "core/hc08/timer/timer.hpp"
+#include "models/smt/arith.hpp"
+#include "models/hc08/obligations.hpp"
 #include "models/smt/obligation.hpp"
 
 namespace {
@@ -25,7 +25,7 @@ using ap::hc08_drive::Drive;
 TEST(Hc08Proofs, EveryObligationIsProved) {
   const auto list = smt::hc08_obligations();
   ASSERT_EQ(list.size(), 7U);
-  // A name prefix, as in smt_proof (properties/smt/smt_proof_test.cpp): the hc08 proof mutants'
+  // A name prefix, as in smt_proof (properties/xy/smt/smt_proof_test.cpp): the hc08 proof mutants'
   // Killed-by checks prove only the obligations they plant a bug under; one that names nothing
   // fails.
   const char* only = std::getenv("AP_PROVE_ONLY");
@@ -61,7 +61,10 @@ TEST(Hc08Proofs, TheStatedRampIsTheCoresOnEveryPeriod) {
 }
 
 namespace mo = ap::hc08_motor;
-namespace axis = ap::model::smt::axis;
+using ap::model::smt::Arith;
+using ap::model::smt::Check;
+using ap::model::smt::Checks;
+using ap::model::smt::Sem;
 
 // The mirror's state as plain values, and as terms of either semantics.
 struct ModeB {
@@ -73,9 +76,9 @@ struct ModeB {
 
 struct Terms {
   z3::context& c;
-  axis::Sem sem;
-  z3::expr i64(std::int64_t x) const { return sem == axis::Sem::Bv ? c.bv_val(x, 64) : c.int_val(x); }
-  z3::expr u16(std::uint16_t x) const { return sem == axis::Sem::Bv ? c.bv_val(static_cast<unsigned>(x), 16) : c.int_val(x); }
+  Sem sem;
+  z3::expr i64(std::int64_t x) const { return sem == Sem::Bv ? c.bv_val(x, 64) : c.int_val(x); }
+  z3::expr u16(std::uint16_t x) const { return sem == Sem::Bv ? c.bv_val(static_cast<unsigned>(x), 16) : c.int_val(x); }
   smt::Hc08ModeBState state(const ModeB& m) const {
     return {i64(m.commanded), i64(m.half), c.bool_val(m.from_rotor), c.bool_val(m.full)};
   }
@@ -88,8 +91,8 @@ struct Terms {
   }
   // The Int twin's side conditions (hc08.mode_b.no_overflow) on these concrete values: each
   // holds. (The Bv records are Z3's no-overflow predicates, which simplify() leaves unevaluated.)
-  void all_hold(const axis::Checks& checks) const {
-    if (sem != axis::Sem::Int) return;
+  void all_hold(const Checks& checks) const {
+    if (sem != Sem::Int) return;
     for (const auto& k : checks) EXPECT_TRUE(z3::implies(k.guard, k.cond).simplify().is_true()) << k.name;
   }
 };
@@ -101,7 +104,7 @@ struct Terms {
 // state carried from event to event. commanded_ is private: the mirror's is compared through
 // what it decides, the steps of every later move (remaining() and the position), so a carried
 // remainder that differs shows up.
-void mode_b_against_the_core(axis::Sem sem) {
+void mode_b_against_the_core(Sem sem) {
   ASSERT_EQ(mo::kAngleMax, 9999U);  // the bound the obligations assume
   const Terms tm{smt::shared_context(), sem};
   z3::context& c = tm.c;
@@ -126,7 +129,7 @@ void mode_b_against_the_core(axis::Sem sem) {
         st.right = right;
         st.speed_centi = 100;
         st.angle_deg = angle;
-        axis::Checks checks;
+        Checks checks;
         const smt::Hc08ModeBMove mv =
             smt::hc08_mode_b_move_term(c, tm.state(s), tm.u16(angle), c.bool_val(right), c.bool_val(full), sem, &checks);
         tm.all_hold(checks);
@@ -158,7 +161,7 @@ void mode_b_against_the_core(axis::Sem sem) {
           s = {tm.value(mv.after.commanded), m.position_half(), true, full};
         }
       } else if (kind < 9) {  // a drive change at rest
-        axis::Checks checks;
+        Checks checks;
         s = tm.values(smt::hc08_set_drive_term(c, tm.state(s), c.bool_val(full), sem, &checks));
         tm.all_hold(checks);
         ASSERT_TRUE(m.set_drive(d));
@@ -189,7 +192,7 @@ void mode_b_against_the_core(axis::Sem sem) {
   EXPECT_GT(stopped, 50U);
 }
 
-TEST(Hc08Proofs, TheStatedModeBArithmeticIsTheCores) { mode_b_against_the_core(axis::Sem::Bv); }
-TEST(Hc08Proofs, TheIntTwinOfModeBIsTheCores) { mode_b_against_the_core(axis::Sem::Int); }
+TEST(Hc08Proofs, TheStatedModeBArithmeticIsTheCores) { mode_b_against_the_core(Sem::Bv); }
+TEST(Hc08Proofs, TheIntTwinOfModeBIsTheCores) { mode_b_against_the_core(Sem::Int); }
 
 }  // namespace

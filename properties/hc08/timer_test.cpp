@@ -1,4 +1,4 @@
-// TIM1's reload (core/hc08_timer) against seed 002 §5.3.1 and docs/hc08.md "Timer": BUSCLK
+// TIM1's reload (core/hc08/timer) against seed 002 §5.3.1 and docs/hc08.md "Timer": BUSCLK
 // 2 457 600 Hz [T], PS 0..6 [EXT], period TMOD + 1 ticks [EXT]. The expectations are computed
 // here in floating point from those numbers, not read from the core.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "core/hc08_timer/timer.hpp"
+#include "core/hc08/timer/timer.hpp"
 
 namespace {
 

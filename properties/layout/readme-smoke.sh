@@ -68,7 +68,7 @@ case $key in
     expect 0 '^5 obligations: 5 proved, 0 failed, 0 unknown' ./axisproof prove --only axis.dd. --jobs 2
     [[ $(grep -c '^axis\.dd\..* PROVED ' <<<"$out") -eq 5 ]] || fail "prove --jobs 2: the table does not list the 5 obligations as PROVED" ;;
   axisproof-fuzz)
-    [[ -x $build/fuzz/protocol/fuzz_frame_parser || -n $(find "$build/fuzz" -name fuzz_frame_parser -type f 2>/dev/null) ]] ||
+    [[ -x $build/fuzz/xy/protocol/fuzz_frame_parser || -n $(find "$build/fuzz" -name fuzz_frame_parser -type f 2>/dev/null) ]] ||
       fail "$build has no libFuzzer binaries (this smoke is registered only where AP_FUZZ_BINARIES is on)"
     expect 0 'frame_parser' ./axisproof fuzz --target frame_parser --time 2 --jobs 1 --no-save --build-dir "$build" ;;
   axisproof-sim)
@@ -98,7 +98,7 @@ case $key in
     # The thesis's Tab. 3 (seed-003.md §5.2): row 15 as printed there, then the program end to
     # end over the DDS bus (docs/cnc.md) with its outputs; a line the strict dialect refuses.
     expect 0 ' 15 +0,2 +3 +25,5 +160,5 +26 ' ./axisproof gcode --table3
-    expect 0 'scenario thesis: PASS' ./axisproof gcode scenarios/gcode/thesis.gcode --dialect thesis --out "$tmp/gcode"
+    expect 0 'scenario thesis: PASS' ./axisproof gcode scenarios/xy/gcode/thesis.gcode --dialect thesis --out "$tmp/gcode"
     for f in trace.csv path.csv path.svg profile.svg; do [[ -s $tmp/gcode/thesis/$f ]] || fail "gcode wrote no $f"; done
     printf 'N1  G1 X1\n' > "$tmp/bad.gcode"
     expect 2 'bad.gcode:1:4: BadSpacing' ./axisproof gcode "$tmp/bad.gcode" --dialect thesis ;;  # the second space
@@ -119,7 +119,7 @@ case $key in
     # A profile of one instrumented test, reported as the gate does (--build-dir, --profiles).
     grep -q '^AP_COVERAGE:BOOL=ON' "$build/CMakeCache.txt" || fail "$build is not built with coverage"
     mkdir -p "$tmp/prof"
-    LLVM_PROFILE_FILE="$tmp/prof/%m.profraw" "$build/properties/protocol/protocol_unit" --gtest_brief=1 >/dev/null 2>&1 ||
+    LLVM_PROFILE_FILE="$tmp/prof/%m.profraw" "$build/properties/xy/protocol/protocol_unit" --gtest_brief=1 >/dev/null 2>&1 ||
       fail "protocol_unit failed"
     expect 0 'branch' ci/coverage tests --build-dir "$build" --profiles "$tmp/prof" ;;
   ci-m4-build)

@@ -17,7 +17,7 @@ namespace t = ap::sim::text;
 
 namespace {
 
-// The two dialects as the profiles configure them (sim/src/unit3_scenario.cpp, hc08_scenario.cpp).
+// The two dialects as the profiles configure them (sim/unit3/src/scenario.cpp, hc08_scenario.cpp).
 const t::Dialect kFull = {
     .full_escapes = true, .name_at_end = false, .cut_blank_hash = true, .one_title = false, .time = {20, 1'000'000'000'000LL}};
 const t::Dialect kPlain = {

@@ -8,12 +8,12 @@
 #include <span>
 #include <string>
 
-#include "core/unit3_axis/counting.hpp"
-#include "core/unit3_board/unit.hpp"
-#include "core/unit3_joystick/joystick.hpp"
-#include "core/unit3_menu/menu.hpp"
-#include "core/unit3_settings/settings.hpp"
-#include "protocol/unit3_wire/dialect.hpp"
+#include "core/unit3/axis/counting.hpp"
+#include "core/unit3/board/unit.hpp"
+#include "core/unit3/joystick/joystick.hpp"
+#include "core/unit3/menu/menu.hpp"
+#include "core/unit3/settings/settings.hpp"
+#include "protocol/unit3/wire/dialect.hpp"
 
 namespace {
 

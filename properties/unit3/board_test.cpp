@@ -1,4 +1,4 @@
-// The unit's firmware (core/unit3_board) against seed 001 and docs/unit3.md "The board".
+// The unit's firmware (core/unit3/board) against seed 001 and docs/unit3.md "The board".
 // Expected values are worked out by hand from the thesis's numbers and the documented rules.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/unit3_board/unit.hpp"
+#include "core/unit3/board/unit.hpp"
 #include "replies.hpp"
 
 namespace {

@@ -1,11 +1,11 @@
-// Step counting (core/unit3_axis) against seed 001 §2.3, §3.3-3.4 and docs/unit3.md
+// Step counting (core/unit3/axis) against seed 001 §2.3, §3.3-3.4 and docs/unit3.md
 // "Counting"; expected values worked out by hand from those texts.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <string>
 
-#include "core/unit3_axis/counting.hpp"
+#include "core/unit3/axis/counting.hpp"
 
 namespace {
 

@@ -1,11 +1,11 @@
-// The joystick mapping (core/unit3_joystick) at the codes seed 001 §3.6 and §10.4 name, with
+// The joystick mapping (core/unit3/joystick) at the codes seed 001 §3.6 and §10.4 name, with
 // the values eq. 6 and 7 give for them worked out by hand.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdint>
 
-#include "core/unit3_joystick/joystick.hpp"
+#include "core/unit3/joystick/joystick.hpp"
 
 namespace {
 

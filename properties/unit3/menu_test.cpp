@@ -1,10 +1,10 @@
-// The windows and buttons (core/unit3_menu) against seed 001 §3.7 and docs/unit3.md "The menu".
+// The windows and buttons (core/unit3/menu) against seed 001 §3.7 and docs/unit3.md "The menu".
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
 
 #include <vector>
 
-#include "core/unit3_menu/menu.hpp"
+#include "core/unit3/menu/menu.hpp"
 
 namespace {
 

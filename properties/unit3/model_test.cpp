@@ -1,4 +1,4 @@
-// Stateful test: the unit's firmware (core/unit3_board) against the reference model of what
+// Stateful test: the unit's firmware (core/unit3/board) against the reference model of what
 // the PC sees (models/unit3, docs/unit3.md "Reference model"). Random interleavings of PC
 // lines (good ones, and ones with a byte lost, changed or added), stick positions, endstops,
 // buttons, time and power cycles; after every step the PC's bytes must be exactly the model's
@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/unit3_board/unit.hpp"
+#include "core/unit3/board/unit.hpp"
 #include "models/unit3/pc_view.hpp"
 #include "replies.hpp"
 

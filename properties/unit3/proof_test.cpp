@@ -1,7 +1,7 @@
 // The unit3 profile's proof obligations (models/smt/src/unit3_obligations.cpp), each PROVED.
 #include <gtest/gtest.h>
 
-#include "models/smt/modules.hpp"
+#include "models/unit3/obligations.hpp"
 #include "models/smt/obligation.hpp"
 
 namespace {

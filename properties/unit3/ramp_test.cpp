@@ -1,4 +1,4 @@
-// The ramp table and step timer (core/unit3_ramp) against docs/unit3.md "Ramp and step timer":
+// The ramp table and step timer (core/unit3/ramp) against docs/unit3.md "Ramp and step timer":
 // 16 MHz [T], prescaler 64, entry i = 25 + 10 i + i (i - 1) / 2 Hz (25 .. 800 Hz, the step
 // between entries 10, 11, ..., 40 Hz), one entry per 10 ms. The expected values are worked out
 // here from those numbers, not read from the core's constants.
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "core/unit3_ramp/ramp.hpp"
+#include "core/unit3/ramp/ramp.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/unit3_board/unit.hpp"
+#include "core/unit3/board/unit.hpp"
 
 namespace ap::unit3_test {
 

@@ -1,4 +1,4 @@
-// EEPROM settings (core/unit3_settings, docs/unit3.md "Settings"): what is stored loads back,
+// EEPROM settings (core/unit3/settings, docs/unit3.md "Settings"): what is stored loads back,
 // a blank or damaged image loads the documented defaults and says why.
 #include <gtest/gtest.h>
 #include <rapidcheck/gtest.h>
@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "core/unit3_settings/settings.hpp"
+#include "core/unit3/settings/settings.hpp"
 
 namespace {
 

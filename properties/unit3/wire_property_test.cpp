@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/unit3_wire/dialect.hpp"
+#include "protocol/unit3/wire/dialect.hpp"
 
 namespace {
 

@@ -21,7 +21,7 @@
 #include "models/waveform/svg.hpp"
 #include "models/waveform/vcd.hpp"
 #include "profile_sim_support.hpp"
-#include "sim/hc08.hpp"
+#include "sim/hc08/hc08.hpp"
 
 namespace fs = std::filesystem;
 namespace h = ap::sim::hc08;

@@ -18,7 +18,7 @@
 #include "models/waveform/svg.hpp"
 #include "models/waveform/vcd.hpp"
 #include "profile_sim_support.hpp"
-#include "sim/unit3.hpp"
+#include "sim/unit3/unit3.hpp"
 
 namespace fs = std::filesystem;
 namespace u3 = ap::sim::unit3;
@@ -455,7 +455,7 @@ TEST(Unit3SimBoard, OutputsAgreeWithTheRun) {
   const std::string csv = slurp(r.out_dir + "/trace.csv");
   EXPECT_EQ(csv.rfind("t_ms,axis,source,entry,dir,mode,counter,remaining,pulses,running", 0), 0U);
   EXPECT_EQ(count_of(csv, "\n"), 1U + 3U * 1500U);
-  // M011; came while Y moved: Y's MODE pins change only once it is at rest (core/unit3_board);
+  // M011; came while Y moved: Y's MODE pins change only once it is at rest (core/unit3/board);
   // Z, at rest, takes it at once.
   EXPECT_NE(csv.find("\n1500,y,idle,0,-1,1,-3200,0,0,0,"), std::string::npos);
   EXPECT_NE(csv.find("\n1500,z,idle,0,1,1,"), std::string::npos);

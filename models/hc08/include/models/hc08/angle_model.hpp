@@ -5,7 +5,7 @@
 // type, what the display shows for it (left of the start included), what a mode B move turns,
 // and what a change of drive type does to the position and to mode B's carried remainder.
 // Written from the thesis (seed 002, `002_*.txt`) and the docs, without the unit's code; it
-// shares nothing with core/hc08_motor or core/hc08_drive.
+// shares nothing with core/hc08/motor or core/hc08_drive.
 //
 // Units. The rotor's position is a signed count of half steps (4.5 degrees) from power-up,
 // right positive: one revolution is 80 half-step positions ("osmitaktní" 80 steps of 4.5°,

@@ -1,6 +1,6 @@
 #pragma once
 // A 32-bit Z3 bit-vector that behaves like std::uint32_t under the operators the core's
-// generic bit kernels use (core/tmc2130/bits.hpp), so those kernels can be instantiated
+// generic bit kernels use (core/xy/tmc2130/bits.hpp), so those kernels can be instantiated
 // symbolically: the proof is about the code, not about a transcription of it.
 #include <cstdint>
 

@@ -1,11 +1,12 @@
 #pragma once
 // The proof-obligation registry behind `axisproof prove` and the `proof` ctest label.
 //
-// Adding obligations for a module:
-//   1. write `void add_<module>_obligations(ap::model::smt::ObligationList& out)` in
-//      models/smt/src/<module>.cpp, pushing one Obligation per claim;
-//   2. declare it in include/models/smt/modules.hpp and call it from all_obligations()
-//      in src/all.cpp;
+// This is the kit every profile's proofs use; the obligations are the profiles' own
+// (models/<profile>/..., docs/proofs.md). Adding obligations for a module of a profile:
+//   1. write `void add_<module>_obligations(ap::model::smt::ObligationList& out)` in the
+//      profile's models folder, pushing one Obligation per claim;
+//   2. call it from the profile's list of obligations, which its CLI entry names
+//      (cli/<profile>/profile.cpp, `Profile::obligations`);
 //   3. each check builds its claim in shared_context() and returns check_valid(...).
 #include <functional>
 #include <string>
@@ -33,9 +34,6 @@ struct Obligation {
 };
 
 using ObligationList = std::vector<Obligation>;
-
-// Every obligation of every module, in a stable order.
-ObligationList all_obligations();
 
 // One Z3 context for all obligations of this process: creating a context costs more than
 // most of our queries. Not thread-safe; obligations run one after another.

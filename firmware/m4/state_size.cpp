@@ -1,9 +1,0 @@
-// Not firmware: a probe for ci/m4-build's RAM figure. The core keeps no static state; all of it
-// lives in one ap::board::Board object, which the images place in static storage (src/main.cpp). The symbol's
-// size (nm -S) is sizeof(Board) as the cross compiler lays it out.
-#include "core/board/board.hpp"
-
-extern "C" {
-extern const unsigned char ap_board_state_bytes[sizeof(ap::board::Board)];
-const unsigned char ap_board_state_bytes[sizeof(ap::board::Board)] = {};
-}
