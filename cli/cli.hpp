@@ -42,7 +42,5 @@ void add_fuzz(CLI::App& app);
 void add_sim(CLI::App& app);
 void add_bench(CLI::App& app);
 void add_frame(CLI::App& app);
-void add_regs(CLI::App& app);
-void add_gcode(CLI::App& app);
 
 }  // namespace ap::cli

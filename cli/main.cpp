@@ -2,6 +2,7 @@
 // Usage errors (unknown subcommand or option) print one line and exit 2, so scripts can
 // tell a typo from a failing gate (exit 1).
 #include "cli.hpp"
+#include "profile.hpp"
 
 #include <cstdio>
 #include <string>
@@ -19,8 +20,10 @@ int main(int argc, char** argv) {
   ap::cli::add_sim(app);
   ap::cli::add_bench(app);
   ap::cli::add_frame(app);
-  ap::cli::add_regs(app);
-  ap::cli::add_gcode(app);
+  // A profile's own commands (the XY platform's `regs` and `gcode`), from its entry.
+  for (const auto& p : ap::cli::profiles()) {
+    if (p.add_commands != nullptr) p.add_commands(app);
+  }
 
   if (argc > 1 && argv[1][0] != '-') {
     bool known = false;

@@ -76,6 +76,9 @@ struct Profile {
   // The scenarios the gate's firmware (QEMU) stage runs on the profile's bootable image
   // (docs/qemu.md); empty: the profile has no image yet and its gate has no such stage.
   std::vector<std::string_view> qemu_scenarios;
+
+  // Subcommands only this profile has (nullptr: none), added to the command line at start.
+  void (*add_commands)(CLI::App& app) = nullptr;
 };
 
 // `sim board` for any profile: a.boards boards on one loopback participant of a.domain, one

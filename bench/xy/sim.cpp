@@ -15,13 +15,13 @@
 namespace {
 
 void BM_SimScenarioLockstep(benchmark::State& state) {
-  const ap::sim::scenario::Scenario s =
-      ap::sim::scenario::parse_file(std::string(AP_SOURCE_DIR) + "/scenarios/xy/absolute_20mm.scn");
-  ap::sim::RunOptions o;
+  const ap::sim::xy::scenario::Scenario s =
+      ap::sim::xy::scenario::parse_file(std::string(AP_SOURCE_DIR) + "/scenarios/xy/absolute_20mm.scn");
+  ap::sim::xy::RunOptions o;
   o.out_root = "";
   double vtime = 0, wall = 0, trips = 0;
   for (auto _ : state) {
-    const ap::sim::RunResult r = ap::sim::run_scenario(s, o);
+    const ap::sim::xy::RunResult r = ap::sim::xy::run_scenario(s, o);
     if (!r.pass) state.SkipWithError("scenario failed");
     vtime += static_cast<double>(r.vtime_us) / 1e6;
     wall += r.wall_s;
@@ -33,7 +33,7 @@ void BM_SimScenarioLockstep(benchmark::State& state) {
 BENCHMARK(BM_SimScenarioLockstep)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
 void BM_SimBoardAlone(benchmark::State& state) {
-  ap::sim::SimBoard b(ap::sim::BoardOptions{});
+  ap::sim::xy::SimBoard b(ap::sim::xy::BoardOptions{});
   b.boot();
   ap::xy_frame::CommandFrame f;
   f.x = {ap::xy_codec::CommandId::Jog, 1};

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "commands.hpp"
 #include "core/xy/frame/command_codec.hpp"
 #include "models/xy/smt/modules.hpp"
 #include "core/xy/frame/echo_codec.hpp"
@@ -163,10 +164,10 @@ void doc() { std::fputs(xy_client::all_tables_md().c_str(), stdout); }
 
 int sim_board(const SimBoardArgs& a) {
   return host_boards(a, "xy", [](const dds::ParticipantPtr& pp, std::uint32_t id, const std::string& out, std::chrono::seconds idle) {
-    sim::BoardOptions o;
+    sim::xy::BoardOptions o;
     o.id = id;
     o.out_dir = out;
-    return sim::serve_board(pp, o, idle);
+    return sim::xy::serve_board(pp, o, idle);
   });
 }
 
@@ -178,9 +179,9 @@ std::string qemu_image() {
 
 int sim_run(const SimRunArgs& a) {
   return sim_run_main([&]() -> SimRunVerdict {
-    sim::scenario::Scenario s = sim::scenario::parse_file(a.scenario);
-    sim::RunOptions o;
-    o.realtime = a.realtime || s.timing == sim::scenario::Timing::realtime;
+    sim::xy::scenario::Scenario s = sim::xy::scenario::parse_file(a.scenario);
+    sim::xy::RunOptions o;
+    o.realtime = a.realtime || s.timing == sim::xy::scenario::Timing::realtime;
     set_run_options(a, o);
     o.out_root = a.out_root;
     if (a.target == "qemu") {
@@ -190,8 +191,8 @@ int sim_run(const SimRunArgs& a) {
       throw std::runtime_error("--target " + a.target + ": host or qemu");
     }
     if (o.step_us <= 0 || s.period_us % o.step_us != 0) throw std::runtime_error("--step-ms must divide the command period");
-    const sim::RunResult r = sim::run_scenario(s, o);
-    std::cout << sim::format_report(s, r);
+    const sim::xy::RunResult r = sim::xy::run_scenario(s, o);
+    std::cout << sim::xy::format_report(s, r);
     return {r.pass, r.out_dir};
   });
 }
@@ -216,6 +217,10 @@ Profile ap_profile_xy() {
       // and the I2C sensors.
       .qemu_scenarios = {"absolute_20mm", "ble_led", "shutdown_button", "manual_reversal", "endstop_hit", "link_loss_jog", "accel_save_reboot", "ihold_irun",
                          "sensors"},
+      .add_commands = [](CLI::App& app) {
+        add_regs(app);
+        add_gcode(app);
+      },
   };
 }
 

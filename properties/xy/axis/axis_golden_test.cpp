@@ -46,12 +46,12 @@ TEST(AxisGolden, AbsoluteMove20mm) {
   int64_t edges_total = 0;
   int64_t squeezed = 0;
   {
-    ap::sim::TraceWriter w(path);
+    ap::sim::xy::TraceWriter w(path);
     ASSERT_TRUE(w.ok()) << path;
     // STEP edges at the times the quantised timer (step_timer) would emit them.
-    ap::sim::StepWriter sw(std::string(AP_SOURCE_DIR) + "/out/traces/axis-abs-20mm/steps.csv");
+    ap::sim::xy::StepWriter sw(std::string(AP_SOURCE_DIR) + "/out/traces/axis-abs-20mm/steps.csv");
     ASSERT_TRUE(sw.ok());
-    std::array<ap::sim::StepClock, 2> clk{};
+    std::array<ap::sim::xy::StepClock, 2> clk{};
     std::array<int64_t, 2> last_edge{-1, -1};
     std::array<Config, 2> cfg{config_from_wire(100, 10'000, accel_um[0]), config_from_wire(100, 10'000, accel_um[1])};
     std::array<State, 2> st{};
@@ -92,8 +92,8 @@ TEST(AxisGolden, AbsoluteMove20mm) {
   // Pulses the core wanted but the timer period could not fit before the tick's end.
   RecordProperty("squeezed_edges", std::to_string(squeezed));
   EXPECT_LE(squeezed * 1000, steps_total) << squeezed;
-  std::vector<ap::sim::TraceRow> rows;
-  ASSERT_TRUE(ap::sim::read_trace(path, rows));
+  std::vector<ap::sim::xy::TraceRow> rows;
+  ASSERT_TRUE(ap::sim::xy::read_trace(path, rows));
   for (int a = 0; a < 2; ++a) {
     const char axis = a == 0 ? 'X' : 'Y';
     const Config c = config_from_wire(100, 10'000, accel_um[static_cast<size_t>(a)]);
@@ -137,7 +137,7 @@ TEST(AxisGolden, ManualReversal) {
   const Config c = config_from_wire(100, 10'000, 5000);
   const int64_t t_flip = 3000;  // ticks: the requested direction changes at 3 s
   {
-    ap::sim::TraceWriter w(path);
+    ap::sim::xy::TraceWriter w(path);
     ASSERT_TRUE(w.ok()) << path;
     State s{};
     s.homed = 1;
@@ -158,8 +158,8 @@ TEST(AxisGolden, ManualReversal) {
       w.row(tick * kTickUs, 'X', s, in, out);
     }
   }
-  std::vector<ap::sim::TraceRow> rows;
-  ASSERT_TRUE(ap::sim::read_trace(path, rows));
+  std::vector<ap::sim::xy::TraceRow> rows;
+  ASSERT_TRUE(ap::sim::xy::read_trace(path, rows));
   ASSERT_EQ(rows.size(), 11001u);
   int64_t t_full = -1;
   int64_t t_dir = -1;

@@ -153,7 +153,7 @@ struct Run {
       const std::optional<em::FrameFate> fate = it == fates.end() ? std::nullopt : std::optional(it->second);
       ++checked;
       if (r.outcome == ap::xy_client::Outcome::Blocked) ++blocked_reports;
-      if (const auto m = ap::sim::check_outcome(r, fate)) note("outcome at " + std::to_string(now_ms) + " ms: " + *m);
+      if (const auto m = ap::sim::xy::check_outcome(r, fate)) note("outcome at " + std::to_string(now_ms) + " ms: " + *m);
     }
     ++now_ms;
   }

@@ -11,7 +11,7 @@
 
 #include "sim/xy/scenario.hpp"
 
-namespace sc = ap::sim::scenario;
+namespace sc = ap::sim::xy::scenario;
 
 namespace {
 

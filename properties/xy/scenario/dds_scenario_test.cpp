@@ -9,7 +9,7 @@
 
 #include "sim/xy/scenario.hpp"
 
-namespace sc = ap::sim::scenario;
+namespace sc = ap::sim::xy::scenario;
 
 namespace {
 

@@ -18,7 +18,7 @@
 #include "sim/xy/run.hpp"
 
 namespace fs = std::filesystem;
-namespace sc = ap::sim::scenario;
+namespace sc = ap::sim::xy::scenario;
 namespace wf = ap::model::waveform;
 
 namespace {
@@ -38,10 +38,10 @@ std::vector<std::string> bundled() {
   return names;
 }
 
-ap::sim::RunResult run(const sc::Scenario& s, const std::string& root = out_root()) {
-  ap::sim::RunOptions o;
+ap::sim::xy::RunResult run(const sc::Scenario& s, const std::string& root = out_root()) {
+  ap::sim::xy::RunOptions o;
   o.out_root = root;
-  return ap::sim::run_scenario(s, o);
+  return ap::sim::xy::run_scenario(s, o);
 }
 
 std::string slurp(const std::string& p) {
@@ -57,13 +57,13 @@ class Bundled : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Bundled, Passes) {
   const sc::Scenario s = sc::parse_file(std::string(AP_SOURCE_DIR) + "/scenarios/xy/" + GetParam() + ".scn");
-  const ap::sim::RunResult r = run(s);
-  std::cout << ap::sim::format_report(s, r);
+  const ap::sim::xy::RunResult r = run(s);
+  std::cout << ap::sim::xy::format_report(s, r);
   EXPECT_TRUE(r.pass);
   EXPECT_EQ(r.vtime_us, s.duration_us);
   EXPECT_EQ(r.boards.size(), s.boards);
   // The echo checks ran (docs/sim.md "Echo checks"): the model saw every echo the bus brought.
-  for (const ap::sim::BoardVerdict& b : r.boards) {
+  for (const ap::sim::xy::BoardVerdict& b : r.boards) {
     EXPECT_GT(b.echoes_from_board, 0U) << "board " << b.board;
     EXPECT_GE(b.echoes_model_checked, b.echoes_from_board) << "board " << b.board;
   }
@@ -84,8 +84,8 @@ TEST(SimOutputs, VcdAndSvgOfARunAreWellFormed) {
       "expect by 1.4 s x.status == reached\nexpect end x.pos == 2 mm\n",
       "outputs.scn");
   const std::string root = out_root() + "/outputs-test";
-  const ap::sim::RunResult r = run(s, root);
-  ASSERT_TRUE(r.pass) << ap::sim::format_report(s, r);
+  const ap::sim::xy::RunResult r = run(s, root);
+  ASSERT_TRUE(r.pass) << ap::sim::xy::format_report(s, r);
   const std::string dir = root + "/outputs";
 
   // VCD: parses, has every line the issue asks for, and agrees with the run.
@@ -139,7 +139,7 @@ TEST(SimOutputs, VcdAndSvgOfARunAreWellFormed) {
   std::ifstream trace(dir + "/trace.csv");
   std::string header;
   std::getline(trace, header);
-  EXPECT_EQ(header.rfind(ap::sim::kTraceHeader, 0), 0U);
+  EXPECT_EQ(header.rfind(ap::sim::xy::kTraceHeader, 0), 0U);
   EXPECT_NE(header.find("lost_step_risk"), std::string::npos);
   std::size_t rows = 0;
   std::string x_edges;  // the Tab. 7-3 letters X took, in order, each run once
@@ -168,9 +168,9 @@ TEST(SimVerdict, AWrongExpectationFailsWithItsLine) {
       "scenario wrong_expectation\nduration 3 s\nboard ble session\n"
       "at 0.5 s goto x 1 mm\nexpect at 2.5 s x.pos == 2 mm tol 1 um\nexpect by 2 s x.status == reached\n",
       "wrong_expectation.scn");
-  const ap::sim::RunResult r = run(s, "");
+  const ap::sim::xy::RunResult r = run(s, "");
   ASSERT_FALSE(r.pass);
-  ASSERT_EQ(r.failures.size(), 1U) << ap::sim::format_report(s, r);
+  ASSERT_EQ(r.failures.size(), 1U) << ap::sim::xy::format_report(s, r);
   EXPECT_NE(r.failures[0].find("wrong_expectation.scn:5"), std::string::npos) << r.failures[0];
   EXPECT_NE(r.failures[0].find("got 1000 um"), std::string::npos) << r.failures[0];
 }
@@ -182,15 +182,15 @@ TEST(SimVerdict, CommandsAreIgnoredOutsideADataSession) {
       "scenario gated\nduration 2 s\nboard ble connected\nat 0.2 s goto x 1 mm\n"
       "expect always x.speed == 0 mm/s\nexpect end x.pos == 0 mm\nexpect end echoes == 0\nexpect end gaps >= 15\n",
       "gated.scn");
-  const ap::sim::RunResult r = run(s, "");
-  EXPECT_TRUE(r.pass) << ap::sim::format_report(s, r);
+  const ap::sim::xy::RunResult r = run(s, "");
+  EXPECT_TRUE(r.pass) << ap::sim::xy::format_report(s, r);
 }
 
 TEST(SimVerdict, LinkCutIsReportedAsGaps) {
   const sc::Scenario s = sc::parse(
       "scenario cut\nduration 3 s\nboard ble session\nat 1 s link cut 1 s\nexpect end gaps == 10\n", "cut.scn");
-  const ap::sim::RunResult r = run(s, "");
-  ASSERT_TRUE(r.pass) << ap::sim::format_report(s, r);
+  const ap::sim::xy::RunResult r = run(s, "");
+  ASSERT_TRUE(r.pass) << ap::sim::xy::format_report(s, r);
   ASSERT_EQ(r.boards.size(), 1U);
   ASSERT_EQ(r.boards[0].gaps.size(), 1U);
   EXPECT_EQ(r.boards[0].gaps[0].lost, 10U);

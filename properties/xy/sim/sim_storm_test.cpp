@@ -32,7 +32,7 @@
 #include "sim/xy/scenario.hpp"
 #include "sim/xy/run.hpp"
 
-namespace sc = ap::sim::scenario;
+namespace sc = ap::sim::xy::scenario;
 namespace cl = ap::xy_client;
 
 namespace {
@@ -159,7 +159,7 @@ std::string scenario_text(const std::string& name, const Mix& mix, std::uint64_t
 }
 
 // What is wrong with one board's run, beyond the scenario's own failures; empty = nothing.
-std::vector<std::string> board_problems(const ap::sim::RunResult& r, std::uint32_t b) {
+std::vector<std::string> board_problems(const ap::sim::xy::RunResult& r, std::uint32_t b) {
   std::vector<std::string> p;
   const std::string tag = "board " + std::to_string(b);
   for (const std::string& f : r.failures) {
@@ -168,7 +168,7 @@ std::vector<std::string> board_problems(const ap::sim::RunResult& r, std::uint32
       p.push_back(f);
     }
   }
-  const ap::sim::DeliveryStats& d = r.boards.at(b).delivery;
+  const ap::sim::xy::DeliveryStats& d = r.boards.at(b).delivery;
   if (d.given_up != 0) p.push_back(tag + ": " + std::to_string(d.given_up) + " frames ran out of transmissions");
   for (const cl::Report& rep : d.reports) {
     if (!cl::delivered(rep.outcome) && rep.outcome != cl::Outcome::Superseded) {
@@ -183,10 +183,10 @@ std::vector<std::string> board_problems(const ap::sim::RunResult& r, std::uint32
   return p;
 }
 
-ap::sim::RunResult run(const std::string& text, const std::string& name) {
-  ap::sim::RunOptions o;
+ap::sim::xy::RunResult run(const std::string& text, const std::string& name) {
+  ap::sim::xy::RunOptions o;
   o.out_root = "";
-  return ap::sim::run_scenario(sc::parse(text, name + ".scn"), o);
+  return ap::sim::xy::run_scenario(sc::parse(text, name + ".scn"), o);
 }
 
 // The kind of a problem, so that shrinking keeps the failure it started from.
@@ -253,12 +253,12 @@ TEST_P(Storm, EveryCommandTakesEffectExactlyOnce) {
     std::vector<BoardStorm> st;
     for (std::uint32_t b = 0; b < kBoards; ++b) st.push_back(make_storm(rng));
     const std::string name = std::string("storm_") + mix.name + "_" + std::to_string(seed);
-    const ap::sim::RunResult r = run(scenario_text(name, mix, seed, first_seq, st), name);
+    const ap::sim::xy::RunResult r = run(scenario_text(name, mix, seed, first_seq, st), name);
     ASSERT_EQ(r.boards.size(), kBoards);
     for (std::uint32_t b = 0; b < kBoards; ++b) {
       ++storms;
-      const ap::sim::BoardVerdict& v = r.boards[b];
-      for (const ap::sim::LinkStats* l : {&v.to_board, &v.to_pc}) {
+      const ap::sim::xy::BoardVerdict& v = r.boards[b];
+      for (const ap::sim::xy::LinkStats* l : {&v.to_board, &v.to_pc}) {
         faults += l->dropped + l->corrupted + l->duplicated + l->reordered + l->delayed;
       }
       frames += v.delivery.new_frames + v.delivery.retransmissions;
@@ -274,7 +274,7 @@ TEST_P(Storm, EveryCommandTakesEffectExactlyOnce) {
       ADD_FAILURE() << mix.name << " seed " << seed << ", board " << b << ":" << all
                     << (violations == 1 ? "\n  shrunk to " + shrink(mix, seed, first_seq, st, b, kind_of(p.front())) : "");
     }
-    if (!r.pass && violations == 0) ADD_FAILURE() << ap::sim::format_report(sc::parse(scenario_text(name, mix, seed, first_seq, st)), r);
+    if (!r.pass && violations == 0) ADD_FAILURE() << ap::sim::xy::format_report(sc::parse(scenario_text(name, mix, seed, first_seq, st)), r);
   }
   std::cout << "storms " << mix.name << ": " << storms << " storms, " << commands << " commands, " << frames
             << " frames sent, " << faults << " faults injected, " << violations << " violations\n";

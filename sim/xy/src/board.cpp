@@ -21,7 +21,7 @@
 #include "core/xy/tmc2130/fields.hpp"
 #include "sim/xy/params.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 namespace {
 
 namespace tmc = ap::xy_tmc2130;
@@ -912,4 +912,4 @@ void SimBoard::finish() {
   }
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -11,7 +11,7 @@
 
 #include "sim/xy/board.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 namespace {
 
 // RLS Orbis programming as the encoder sees it: the unlock bytes, then the command that sets
@@ -358,4 +358,4 @@ void SimBoard::write_qemu_stats() const {
   o << buf;
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

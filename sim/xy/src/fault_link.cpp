@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <utility>
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 FaultLink::FaultLink(const std::vector<scenario::Fault>& faults, scenario::Direction dir, std::uint64_t seed)
     : rng_(seed) {
@@ -100,4 +100,4 @@ Bytes FaultLink::pop(std::int64_t t, std::size_t max_bytes, LinkStats& st, std::
 
 bool FaultLink::roll(double p) { return p > 0 && std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < p; }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

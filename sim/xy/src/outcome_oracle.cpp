@@ -4,7 +4,7 @@
 
 #include "protocol/xy/codec/commands.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 namespace {
 
@@ -79,4 +79,4 @@ std::optional<std::string> check_outcome(const xy_client::Report& r, const std::
   return what + " but in " + frame + " it " + fate_words(*fate, *r.part) + " (" + xy_client::to_string(want) + ")";
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

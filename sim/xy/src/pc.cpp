@@ -27,9 +27,9 @@
 #include "sim/xy/params.hpp"
 #include "sim/text.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
-namespace sc = ap::sim::scenario;
+namespace sc = ap::sim::xy::scenario;
 using xy_codec::CommandId;
 
 namespace {
@@ -511,7 +511,7 @@ class Pc {
       }
     }
     ++b.verdict.delivery.outcomes_checked;
-    if (const auto m = ap::sim::check_outcome(r, fate)) {
+    if (const auto m = ap::sim::xy::check_outcome(r, fate)) {
       if (++b.outcome_failures <= 5) fail("outcome: board " + std::to_string(b.id) + " at " + tstr(t) + ": " + *m);
     }
   }
@@ -916,4 +916,4 @@ RunResult run_pc(const sc::Scenario& s, const RunOptions& opt, std::uint32_t dom
   return pc.run();
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

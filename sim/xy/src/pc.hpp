@@ -8,8 +8,8 @@
 #include "sim/xy/scenario.hpp"
 #include "sim/xy/run.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 RunResult run_pc(const scenario::Scenario& s, const RunOptions& opt, std::uint32_t domain);
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

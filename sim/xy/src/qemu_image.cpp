@@ -18,7 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace ap::sim {
+namespace ap::sim::xy {
 namespace {
 
 std::runtime_error sys_error(const std::string& what) { return std::runtime_error(what + ": " + std::strerror(errno)); }
@@ -229,4 +229,4 @@ std::vector<std::uint8_t> QemuImage::link_read(std::size_t n) {
   return out;
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -7,9 +7,9 @@
 #include "sim/xy/run.hpp"
 #include "sim/text.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
-namespace sc = ap::sim::scenario;
+namespace sc = ap::sim::xy::scenario;
 
 std::string format_report(const sc::Scenario& s, const RunResult& r) {
   std::ostringstream o;
@@ -61,4 +61,4 @@ std::string format_report(const sc::Scenario& s, const RunResult& r) {
 }
 
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

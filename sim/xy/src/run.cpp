@@ -12,9 +12,9 @@
 #include "pc/dds/domain.hpp"
 #include "pc.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
-namespace sc = ap::sim::scenario;
+namespace sc = ap::sim::xy::scenario;
 
 RunResult run_scenario(const sc::Scenario& s, const RunOptions& opt) {
   dds::use_loopback_config(false);
@@ -68,4 +68,4 @@ RunResult run_scenario(const sc::Scenario& s, const RunOptions& opt) {
   return r;
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace ap::sim::scenario {
+namespace ap::sim::xy::scenario {
 namespace {
 
 struct UnitDef {
@@ -705,4 +705,4 @@ std::string to_text(const Scenario& s) {
   return o.str();
 }
 
-}  // namespace ap::sim::scenario
+}  // namespace ap::sim::xy::scenario

@@ -9,7 +9,7 @@
 #include "sim/xy/run.hpp"
 #include "sim/serve_loop.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 dds::Telemetry telemetry_of(SimBoard& sb, std::uint32_t id) {
   dds::Telemetry t;
@@ -59,4 +59,4 @@ int serve_board(const dds::ParticipantPtr& participant, const BoardOptions& opt,
       [&] { return telemetry_of(board, opt.id); });
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 TraceWriter::TraceWriter(const std::string& path) {
   const std::filesystem::path p(path);
@@ -92,10 +92,10 @@ bool read_trace(const std::string& path, std::vector<TraceRow>& rows) {
   return true;
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy
 
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 namespace {
 constexpr uint64_t kClkPerTick = static_cast<uint64_t>(ap::xy_axis::kTimerClockHz) / ap::xy_axis::kTicksPerSecond;
@@ -147,4 +147,4 @@ void StepWriter::edges(char axis, int dir, const std::vector<int64_t>& edges_ns)
   }
 }
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -41,7 +41,7 @@ namespace ap::model::waveform {
 class BoardWaveforms;
 }
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 // Physical constants of the simulated machine (docs/sim.md). The board's parameters may say
 // otherwise (a wrong pitch stays wrong in µm, as on the real platform).
@@ -315,4 +315,4 @@ class SimBoard {
   std::uint64_t taken_digest_ = kFnvBasis;
 };
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -13,7 +13,7 @@
 #include "sim/xy/scenario.hpp"
 #include "sim/xy/run.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 using Bytes = std::vector<std::uint8_t>;
 
@@ -57,4 +57,4 @@ class FaultLink {
   std::int64_t cut_until_ = -1;
 };
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

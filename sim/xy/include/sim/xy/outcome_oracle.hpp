@@ -17,7 +17,7 @@
 #include "models/xy/echo/echo_model.hpp"
 #include "pc/xy/client/client.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 // "BLOCKED XID XDATA YID YDATA XREFUSED YREFUSED" (a refusal as its command ID, -1: none): the
 // bus form of a fate (a bus reply carries at most 100-odd bytes).
@@ -35,4 +35,4 @@ xy_client::Outcome outcome_of(const model::xy_echo::FrameFate& f, std::size_t pa
 // unconfirmed is at most once, which the frame count of the delivery check covers.
 std::optional<std::string> check_outcome(const xy_client::Report& r, const std::optional<model::xy_echo::FrameFate>& fate);
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -7,8 +7,8 @@
 
 #include "core/xy/storage/fram_map.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 std::optional<xy_storage::ParamId> param_by_name(std::string_view name);
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

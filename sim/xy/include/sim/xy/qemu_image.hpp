@@ -13,7 +13,7 @@
 
 #include "protocol/xy/cosim/wire.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 struct QemuOptions {
   std::string elf;                 // the image (build/m4/firmware/xy/ap_xy_qemu.elf)
@@ -67,4 +67,4 @@ class QemuImage {
   std::size_t in_pos_ = 0;
 };
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

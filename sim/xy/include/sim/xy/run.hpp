@@ -25,7 +25,7 @@
 #include "pc/xy/client/client.hpp"
 #include "sim/xy/board.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 
 struct RunOptions {
@@ -92,4 +92,4 @@ dds::Telemetry telemetry_of(SimBoard& b, std::uint32_t id);
 // A human-readable verdict (pass/fail, failures, per-board gaps and link statistics).
 std::string format_report(const scenario::Scenario& s, const RunResult& r);
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

@@ -16,7 +16,7 @@
 #include <variant>
 #include <vector>
 
-namespace ap::sim::scenario {
+namespace ap::sim::xy::scenario {
 
 class ParseError : public std::runtime_error {
  public:
@@ -162,4 +162,4 @@ std::string_view unit_name(Dim d);
 std::optional<Dim> subject_dim(std::string_view subject);
 std::string_view to_string(Verb v);
 
-}  // namespace ap::sim::scenario
+}  // namespace ap::sim::xy::scenario

@@ -11,7 +11,7 @@
 
 #include "core/xy/axis/axis.hpp"
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 struct TraceRow {
   int64_t t_us = 0;
@@ -53,9 +53,9 @@ class TraceWriter {
 // Reads a trace back; returns false on a malformed header or row.
 [[nodiscard]] bool read_trace(const std::string& path, std::vector<TraceRow>& rows);
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy
 
-namespace ap::sim {
+namespace ap::sim::xy {
 
 // STEP edge times as the quantised timer produces them (docs/motion.md). The core decides how
 // many pulses go out in a tick; the timer, programmed by step_timer() for the tick's speed,
@@ -87,4 +87,4 @@ class StepWriter {
   std::ofstream out_;
 };
 
-}  // namespace ap::sim
+}  // namespace ap::sim::xy

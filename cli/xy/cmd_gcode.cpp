@@ -7,6 +7,7 @@
 //   axisproof gcode --table3
 //       the thesis's Tab. 3 recurrence digit for digit, with the exact constant-jerk values
 #include "cli.hpp"
+#include "commands.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -218,12 +219,12 @@ int run_gcode(const GcodeOptions& opt) {
       << "expect always y.speed <= 50 mm/s tol 0.05 mm/s\n"
       << "expect end gaps == 0\n";
   try {
-    const sim::scenario::Scenario s = sim::scenario::parse(scn.str(), name + ".scn");
-    sim::RunOptions o;
+    const sim::xy::scenario::Scenario s = sim::xy::scenario::parse(scn.str(), name + ".scn");
+    sim::xy::RunOptions o;
     o.out_root = opt.out_root;
     o.log = nullptr;
-    const sim::RunResult r = sim::run_scenario(s, o);
-    std::cout << sim::format_report(s, r);
+    const sim::xy::RunResult r = sim::xy::run_scenario(s, o);
+    std::cout << sim::xy::format_report(s, r);
     if (!r.out_dir.empty()) {
       std::ofstream(r.out_dir + "/scenario.scn", std::ios::trunc) << scn.str();
       std::vector<XY> done;

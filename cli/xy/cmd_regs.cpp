@@ -1,6 +1,7 @@
 // axisproof regs: the TMC2130 register map (from the one table in core/xy/tmc2130) and a
 // decoder for captured 40-bit datagrams.
 #include "cli.hpp"
+#include "commands.hpp"
 
 #include <cstdio>
 #include <cstdlib>
