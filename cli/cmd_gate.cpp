@@ -471,8 +471,9 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
   const auto kv = read_kv(source_dir() + "/out/coverage/tests/summary.txt");
   if (kv.count("branch_percent") == 0) return {Result::Fail, "no coverage figures (see log)"};
   const std::string key = "branch " + kv.at("branch_percent") + " % (min " + thr + " %), line " + kv.at("line_percent") +
-                          " %, " + kv.at("files") + " files";
-  run.details.coverage_summary = measured + " from the whole test suite (" + std::string(shared ? "asan build, the gate's test stages" : "cov preset") + "): lines " + kv.at("line_percent") +
+                          " %, " + kv.at("files") + " files of " + measured;
+  run.details.coverage_summary = "The profile's declared code folders (its core, protocol and PC folders and the shared folders it uses: " +
+                                 measured + ") from the whole test suite (" + std::string(shared ? "asan build, the gate's test stages" : "cov preset") + "): lines " + kv.at("line_percent") +
                                  " % of " + kv.at("lines") + ", branches " + kv.at("branch_percent") + " % of " +
                                  kv.at("branches") + "; the gate requires at least " + thr + " % branch coverage.";
   std::ifstream rep(source_dir() + "/out/coverage/tests/report.txt");
