@@ -1,5 +1,5 @@
 // axisproof frame: decode, encode and document the frames of a profile's wire codec
-// (the XY profile's: docs/protocol.md).
+// (each profile documents its own frames under docs/; docs/profiles.md lists them).
 //   frame decode [--profile P] [FRAME...]   each argument is one frame; without arguments stdin
 //                                           is a byte stream (a capture) cut into frames
 //   frame encode [--profile P] TOKEN...     readable form, e.g. x=jog:+:fast y=goto:20000 sub=battery

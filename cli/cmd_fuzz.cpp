@@ -100,7 +100,7 @@ const std::string kSanitizerEnv =
 struct Signature {
   std::string kind;     // crash, leak, timeout, oom
   std::string summary;  // "AddressSanitizer: heap-buffer-overflow", "libFuzzer: deadly signal", ...
-  std::string frames;   // "parse core/xy/frame/src/frame.cpp:12 < LLVMFuzzerTestOneInput fuzz/..."
+  std::string frames;   // "parse core/<profile>/frame/src/frame.cpp:12 < LLVMFuzzerTestOneInput fuzz/..."
   bool reproduced = false;
   std::string key() const { return summary + " | " + frames; }
 };

@@ -15,9 +15,9 @@
 //                core, models, simulator and PC side it links), incrementally
 //   build-asan   asan preset (clang, ASan + UBSan, coverage, fuzz binaries); re-configured
 //                from the preset when an older build/asan lacks coverage or fuzz binaries
-// Every stage judges one firmware profile (--profile, default xy; docs/profiles.md): its tests
-// and the harness's own (ctest -L '^(xy|harness)$'), its fuzz targets, obligations, mutants,
-// coverage folders and size check.
+// Every stage judges one firmware profile (--profile P, default the one declared DEFAULT;
+// docs/profiles.md): its tests and the harness's own (ctest -L '^(P|harness)$'), its fuzz
+// targets, obligations, mutants, coverage folders and size check.
 //   tests        ctest -L 'unit|property|proof' on the asan build (profiles to build/asan/profiles)
 //   proofs       `axisproof prove` (NOT RUN while it is the placeholder)
 //   fuzz         ctest -L fuzz on the asan build (replays corpora and regressions; not the

@@ -1,4 +1,4 @@
-// axisproof prove: discharges a profile's proof obligations (the XY profile's: models/smt) with Z3.
+// axisproof prove: discharges a profile's proof obligations (its entry's, on the models/smt kit) with Z3.
 // Exit 0 only when every selected obligation is PROVED; UNKNOWN (e.g. a timeout) fails too,
 // because an obligation that was not proved is not a proof.
 #include "cli.hpp"

@@ -103,7 +103,7 @@ void add_sim(CLI::App& app) {
   run->add_option("--domain", r.domain, "DDS domain id (default: a free one is claimed)");
   run->add_flag("--join", r.join, "Join boards already running (axisproof sim board --domain N)");
   run->add_option("--out", r.out_root, "Output root; board 0's files go to ROOT/NAME/ (default out/sim/<profile>)");
-  run->add_option("--target", r.target, "host: the core in this process; qemu: the XY board's Cortex-M4 image under QEMU (docs/qemu.md)")
+  run->add_option("--target", r.target, "host: the core in this process; qemu: the profile's Cortex-M4 image under QEMU (docs/qemu.md)")
       ->default_val("host")
       ->check(CLI::IsMember({"host", "qemu"}));
   run->add_option("--step-ms", r.step_ms, "Lockstep granularity in ms (telemetry sampling)")->default_val(10);

@@ -30,7 +30,7 @@ struct SimRunArgs {
   long long domain = -1;  // -1: claim a free one
   std::string out_root;
   int step_ms = 10;
-  std::string target = "host";  // host: the core in-process; qemu: the XY board's QEMU image (docs/qemu.md)
+  std::string target = "host";  // host: the core in-process; qemu: the profile's QEMU image (docs/qemu.md)
 };
 
 struct SimBoardArgs {
