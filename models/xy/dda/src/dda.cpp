@@ -75,10 +75,6 @@ std::vector<Eigen::Vector2i> thesis_quadrant1_cw(int r) {
   return out;
 }
 
-double radial_error(const Eigen::Vector2d& p, const Eigen::Vector2d& centre, double r) {
-  return std::abs((p - centre).norm() - r);
-}
-
 double swept_angle(const Eigen::Vector2d& start, const Eigen::Vector2d& p, bool clockwise) {
   double a = std::atan2(p.y(), p.x()) - std::atan2(start.y(), start.x());
   if (clockwise) a = -a;

@@ -60,12 +60,4 @@ double ref_max_du(double x1, double y1, double x2, double y2) {
   return std::max(std::abs(x2 / l2 - x1 / l1), std::abs(y2 / l2 - y1 / l1));
 }
 
-double ref_axis_cap(double x1, double y1, double x2, double y2, double v_jump) {
-  const double du = ref_max_du(x1, y1, x2, y2);
-  if (du == 0) {
-    return std::numeric_limits<double>::infinity();
-  }
-  return v_jump / du;
-}
-
 }  // namespace ap::model::xy_lookahead

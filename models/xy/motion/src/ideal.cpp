@@ -26,37 +26,6 @@ Profile ideal_move(double distance, double v_start, double v_max, double accel) 
   return p;
 }
 
-double speed_at(const Profile& p, double t) {
-  if (t < 0 || t >= p.t_total) {
-    return 0;
-  }
-  if (t < p.t_ramp) {
-    return p.v_start + p.accel * t;
-  }
-  if (t < p.t_ramp + p.t_cruise) {
-    return p.v_peak;
-  }
-  return p.v_peak - p.accel * (t - p.t_ramp - p.t_cruise);
-}
-
-double position_at(const Profile& p, double t) {
-  if (t <= 0) {
-    return 0;
-  }
-  if (t >= p.t_total) {
-    return p.distance;
-  }
-  const double d_ramp = (p.v_start + p.v_peak) / 2 * p.t_ramp;
-  if (t < p.t_ramp) {
-    return p.v_start * t + p.accel * t * t / 2;
-  }
-  if (t < p.t_ramp + p.t_cruise) {
-    return d_ramp + p.v_peak * (t - p.t_ramp);
-  }
-  const double u = t - p.t_ramp - p.t_cruise;
-  return std::min(p.distance, d_ramp + p.v_peak * p.t_cruise + p.v_peak * u - p.accel * u * u / 2);
-}
-
 double brake_time(double v, double v_start, double accel) { return v > v_start ? (v - v_start) / accel : 0; }
 
 double brake_distance(double v, double v_start, double accel) {

@@ -37,7 +37,6 @@ class PcView {
   void power_cycle();
 
   std::int64_t counter(int a) const { return axes_[static_cast<std::size_t>(a)].counter; }
-  bool pc_moving(int a) const { return axes_[static_cast<std::size_t>(a)].remaining > 0; }
   const Settings& settings() const { return settings_; }
   static std::string report(int axis, std::int64_t count);
 

@@ -68,7 +68,6 @@ class StepClock {
   // t0_ns: start of the tick. Appends the edge times (ns) of out.steps pulses to `edges_ns`.
   void tick(int64_t t0_ns, const ap::xy_axis::Output& out, std::vector<int64_t>& edges_ns);
   [[nodiscard]] int64_t squeezed() const { return squeezed_; }
-  [[nodiscard]] uint64_t period_clocks() const { return period_; }
 
  private:
   uint64_t since_edge_clk_ = 0;  // timer clocks from the last edge to the start of this tick

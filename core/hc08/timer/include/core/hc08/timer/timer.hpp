@@ -60,11 +60,6 @@ struct Fitted {
 // "Menu"). The nearest end of [min_speed, max_speed].
 Fitted fit_speed(std::uint32_t speed_centi, hc08_drive::Drive d);
 
-// The step frequency a reload makes, in mHz (for the error table and the tests).
-constexpr std::uint64_t reload_mhz(const Reload& r) {
-  return (std::uint64_t{kBusHz} * 1000U) / ((std::uint64_t{r.tmod} + 1U) << r.ps);
-}
-
 // The period of a frequency in BUSCLK ticks at PS = 0 (every ramped speed is above the start
 // frequency, whose period fits 16 bits: 2 457 600 / 280 = 8 777).
 constexpr std::uint16_t tmod_at_hz(std::uint32_t hz) {

@@ -108,7 +108,6 @@ class Unit {
   const unit3_settings::Settings& settings() const { return settings_; }
   unit3_settings::Load loaded() const { return loaded_; }
   const unit3_menu::State& menu() const { return menu_; }
-  std::array<std::int8_t, kAxes> latched_dir() const { return dir_; }
   std::uint64_t now_ms() const { return now_ms_; }
   std::uint32_t tx_dropped() const { return tx_.dropped(); }
   std::uint32_t eeprom_writes() const { return eeprom_writes_; }

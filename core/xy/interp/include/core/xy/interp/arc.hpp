@@ -64,7 +64,6 @@ class Arc {
 
   [[nodiscard]] constexpr bool done() const { return phase_ == Phase::Done; }
   [[nodiscard]] constexpr bool on_tail() const { return phase_ == Phase::Tail; }
-  [[nodiscard]] constexpr int64_t radius_squared() const { return r2_; }
   [[nodiscard]] constexpr uint32_t circle_limit() const { return limit_; }
   [[nodiscard]] constexpr uint32_t max_moves() const { return limit_ + tail_limit_; }
   [[nodiscard]] constexpr uint32_t moves_made() const { return made_; }

@@ -184,7 +184,6 @@ constexpr std::int64_t type_max(FieldType t) noexcept {
 inline constexpr std::array<Region, kItemCount * kCopyCount> kAbsoluteMap = detail::make_absolute_map();
 
 // The accessors a proof or a report uses; the same storage the firmware reads.
-constexpr std::span<const MapEntry, kItemCount> item_map() noexcept { return kItemMap; }
 constexpr std::span<const Region, kItemCount * kCopyCount> address_map() noexcept { return kAbsoluteMap; }
 constexpr const MapEntry& entry(ParamId id) noexcept { return kItemMap[static_cast<std::size_t>(id)]; }
 

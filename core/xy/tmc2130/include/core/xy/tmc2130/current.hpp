@@ -60,16 +60,6 @@ constexpr Result<std::uint32_t> current_ma(std::uint8_t cs, bool vsense, std::ui
   return static_cast<std::uint32_t>((s + 1u) / 2u);
 }
 
-// Exact test "true current of CS is <= target mA": N / (D sqrt 2) <= I  <=>  N^2 <= 2 I^2 D^2.
-// 2 I^2 D^2 <= 2 * 1e8 * 1.07e9 = 2.1e17 < 2^64.
-constexpr bool current_at_most(std::uint8_t cs, bool vsense, std::uint32_t rsense_mohm,
-                               std::uint32_t target_ma) {
-  const std::uint64_t n = detail::numerator(cs, vsense);
-  const std::uint64_t d = detail::denominator(rsense_mohm);
-  const std::uint64_t i = target_ma;
-  return n * n <= 2u * i * i * d * d;
-}
-
 // Largest CS (0..31) whose true current is <= target. A target below CS = 0's current, or
 // outside the documented ranges, is CurrentOutOfRange; above CS = 31 it is CS = 31, because
 // 31 is then the largest CS that does not exceed the target.

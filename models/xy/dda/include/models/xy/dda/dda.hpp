@@ -29,8 +29,6 @@ std::vector<Eigen::Vector2i> thesis_bresenham(const Eigen::Vector2i& from, const
 // iterations (a guard; the thesis has none).
 std::vector<Eigen::Vector2i> thesis_quadrant1_cw(int r);
 
-// |distance(p, centre) - r|.
-double radial_error(const Eigen::Vector2d& p, const Eigen::Vector2d& centre, double r);
 
 // Angle of p about the origin measured in the turning direction from `start`, in [0, 2*pi).
 double swept_angle(const Eigen::Vector2d& start, const Eigen::Vector2d& p, bool clockwise);

@@ -43,9 +43,6 @@ struct ThesisSegment {
 [[nodiscard]] double ref_turn_deg(double x1, double y1, double x2, double y2);
 // The thesis law [T] on a correct turn: 1 at 0, 1 - t/90 below 90, 0 from 90.
 [[nodiscard]] double ref_factor(double turn_deg);
-// Largest v whose per-axis velocity jump v * |u_out - u_in| is <= v_jump (infinity when the
-// unit vectors are equal).
-[[nodiscard]] double ref_axis_cap(double x1, double y1, double x2, double y2, double v_jump);
 // Max per-axis |u_out - u_in| (unit vectors).
 [[nodiscard]] double ref_max_du(double x1, double y1, double x2, double y2);
 

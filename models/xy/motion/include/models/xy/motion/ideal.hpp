@@ -20,8 +20,6 @@ struct Profile {
 
 // distance >= 0, 0 < v_start <= v_max, accel > 0.
 [[nodiscard]] Profile ideal_move(double distance, double v_start, double v_max, double accel);
-[[nodiscard]] double position_at(const Profile& p, double t);
-[[nodiscard]] double speed_at(const Profile& p, double t);
 
 // Braking from v to v_start: time and distance (the continuous DD of Tab. 7-3).
 [[nodiscard]] double brake_time(double v, double v_start, double accel);
