@@ -23,10 +23,12 @@
 #   and symbol check read it).
 #
 # AP_PROFILE: the firmware profile (docs/profiles.md) the tests and fuzz targets of a folder
-# belong to, set by the folder (or inherited from its parent): `xy`, or `harness` for the
-# harness's own checks. The gate selects a profile's tests by this label (ctest -L '^xy$').
+# belong to, set by the folder (or inherited from its parent): the profile's name (set by
+# ap_add_profile_dirs for its <layer>/<profile> folders), or `harness` for the harness's own
+# checks. The gate selects a profile's tests by this label (ctest -L '^P$').
 # A test or fuzz target defined where it is unset is a configure error.
-# AP_MCU_ONLY (the m4 preset): only protocol/xy/codec, core and firmware/xy are configured;
+# AP_MCU_ONLY (the m4 preset): only the protocol, core and firmware layers are configured, their
+# shared folders and AP_MCU_PROFILE's own;
 # ap_add_test, ap_add_fuzz_target and ap_add_bench do nothing.
 # AP_FUZZ_ENGINE (set by .clusterfuzzlite/build.sh from $LIB_FUZZING_ENGINE): link flags of an
 # external fuzzing engine, used instead of -fsanitize=fuzzer.

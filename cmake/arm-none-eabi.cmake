@@ -1,6 +1,6 @@
 # Cross toolchain for the Cortex-M4 build (m4 preset): Debian's gcc-arm-none-eabi 12.2 with
-# newlib. The core libraries, and for the XY profile the linked images of firmware/xy (their own
-# startup code and linker scripts, -nostartfiles; docs/qemu.md).
+# newlib. The core libraries, and for a profile whose firmware folder has them the linked images
+# (their own startup code and linker scripts, -nostartfiles; docs/qemu.md).
 set(CMAKE_SYSTEM_NAME Generic)
 set(CMAKE_SYSTEM_PROCESSOR arm)
 set(CMAKE_C_COMPILER arm-none-eabi-gcc)

@@ -1,5 +1,5 @@
 // The lockstep run of one scenario against one simulated unit, the same for the profiles'
-// end-to-end layers (docs/unit3-sim.md, docs/hc08-sim.md; the lockstep of docs/dds.md): claim a
+// end-to-end layers (their docs/*-sim.md pages; the lockstep of docs/dds.md): claim a
 // DDS domain, host the board on a thread unless it runs elsewhere (--join), drive it from the
 // PC side in virtual time, shut it down and write the report. Each profile keeps its own PC
 // side (what it sends, reads and judges) and its own board.
@@ -34,7 +34,7 @@ namespace ap::sim {
 // shutdown) with their echoes, and the count of round trips.
 class LockstepLink {
  public:
-  // `who` names the run in errors ("unit3", "hc08").
+  // `who` names the run in errors (the profile's name).
   LockstepLink(std::string who, std::uint32_t domain)
       : who_(std::move(who)), pp_(dds::make_participant(domain)), ep_(std::make_unique<dds::PcEndpoint>(pp_, 0)) {}
 

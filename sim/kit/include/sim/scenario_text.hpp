@@ -1,5 +1,5 @@
-// The plumbing every line-based scenario language of sim/ shares (docs/unit3-sim.md and
-// docs/hc08-sim.md "Scenario language"): words and "strings" split on blanks, `#` comments,
+// The plumbing every line-based scenario language of sim/ shares ("Scenario language" in each
+// profile's docs/*-sim.md page): words and "strings" split on blanks, `#` comments,
 // times with a unit, comparisons, and the "file:line: message" error. Each profile's parser
 // keeps only its own statements and quantities; where the two languages were written to differ
 // (string escapes, the end-of-line message, the time limits, the line shown in the report) a

@@ -52,7 +52,7 @@ int serve_loop(dds::BoardEndpoint& ep, Board& board, std::chrono::milliseconds i
   }
 }
 
-// The board side of a profile whose unit sends no XY telemetry (unit3, hc08): its Board built
+// The board side of a profile whose unit sends no two-axis telemetry (the bus's type): its Board built
 // from `opt` (opt.id is the board's number on the bus) served until a shutdown, `idle_timeout`
 // or `stop`; `step(board, cmd)` runs a plain command and returns the bytes the unit sent.
 template <class Board, class Options, class Step>
@@ -60,7 +60,7 @@ int serve_unit_board(const dds::ParticipantPtr& participant, const Options& opt,
                      const std::atomic<bool>* stop, Step step) {
   dds::BoardEndpoint ep(participant, opt.id);
   Board board(opt);
-  const dds::Telemetry none{};  // the XY telemetry type: not this unit's (docs/sim.md)
+  const dds::Telemetry none{};  // the bus's two-axis telemetry type: not this unit's (docs/sim.md)
   return serve_loop(
       ep, board, idle_timeout, stop, [&](const dds::CommandSample& cmd) { return step(board, cmd); }, [&] { return none; });
 }

@@ -1,7 +1,7 @@
 #pragma once
-// A 32-bit Z3 bit-vector that behaves like std::uint32_t under the operators the core's
-// generic bit kernels use (core/xy/tmc2130/bits.hpp), so those kernels can be instantiated
-// symbolically: the proof is about the code, not about a transcription of it.
+// A 32-bit Z3 bit-vector that behaves like std::uint32_t under the operators a core's generic
+// bit kernels use (its templates over the word type, docs/proofs.md), so those kernels can be
+// instantiated symbolically: the proof is about the code, not about a transcription of it.
 #include <cstdint>
 
 #include <z3++.h>
