@@ -17,7 +17,7 @@
 //   model.frame(ev); ...                   // each frame event the board handles this tick
 //   auto expected = model.end_tick(motion);// after the axes stepped: one Expected per event
 //   check(expected[i], echo_i)             // -> std::optional<Mismatch>
-// LinkTwin (link_twin.hpp) turns the UART bytes into the frame events as the board's
+// LinkTwin (board_checker.hpp) turns the UART bytes into the frame events as the board's
 // receive path does; BoardChecker (board_checker.hpp) wires all of it to a xy_board::Board.
 #pragma once
 
