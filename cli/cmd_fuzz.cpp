@@ -393,7 +393,7 @@ std::vector<FuzzStats> run_fuzz(const FuzzOptions& o, bool* ok) {
     }
   }
   if (chosen.empty()) {
-    std::fprintf(stderr, "axisproof fuzz: profile %s has no fuzz targets (fuzz/<group>/CMakeLists.txt with ap_add_fuzz_target)\n",
+    std::fprintf(stderr, "axisproof fuzz: profile %s has no fuzz targets (fuzz/<profile>/... with ap_add_fuzz_target)\n",
                  o.profile.c_str());
     *ok = false;
     return results;
