@@ -8,16 +8,17 @@
 
 namespace ap::sim::xy {
 
-FaultLink::FaultLink(const std::vector<scenario::Fault>& faults, scenario::Direction dir, std::uint64_t seed)
-    : rng_(seed) {
+FaultLink::FaultLink(const std::vector<scenario::Fault>& faults, scenario::Direction dir, std::uint64_t seed,
+                     LinkObserver* observer)
+    : observer_(observer), rng_(seed) {
   for (const scenario::Fault& f : faults) {
     if (f.dir == scenario::Direction::both || f.dir == dir) faults_.push_back(f);
   }
 }
 
-void FaultLink::push(std::int64_t t, Bytes frame, LinkStats& st, std::uint64_t index) {
+void FaultLink::push(std::int64_t t, Bytes frame, LinkStats& st) {
   ++st.frames;
-  FrameTag tag{index, 0, false, false};
+  FrameTag tag{entered_++, 0, false, false};
   if (cut(t)) {
     ++st.cut;
     return;
@@ -82,19 +83,21 @@ void FaultLink::push(std::int64_t t, Bytes frame, LinkStats& st, std::uint64_t i
   }
 }
 
-Bytes FaultLink::pop(std::int64_t t, std::size_t max_bytes, LinkStats& st, std::vector<FrameTag>* tags) {
+Bytes FaultLink::pop(std::int64_t t, std::size_t max_bytes, LinkStats& st) {
   Bytes out;
+  std::vector<FrameTag> tags;
   std::stable_sort(queue_.begin(), queue_.end(), [](const Held& a, const Held& b) { return a.at < b.at; });
   while (!queue_.empty() && queue_.front().at <= t && out.size() + queue_.front().bytes.size() <= max_bytes) {
     if (cut(t)) {
       ++st.cut;
     } else {
       out.insert(out.end(), queue_.front().bytes.begin(), queue_.front().bytes.end());
-      if (tags != nullptr) tags->push_back(queue_.front().tag);
+      tags.push_back(queue_.front().tag);
       ++st.delivered;
     }
     queue_.pop_front();
   }
+  if (observer_ != nullptr) observer_->left(t, out, tags);
   return out;
 }
 

@@ -1,15 +1,35 @@
 // The human-readable verdict of a run (docs/sim.md): pass or fail, the failures, and per board
-// the link, delivery and echo-check figures.
+// the link, delivery and echo-check figures; and the client's figures the verdict takes for it.
 #include <algorithm>
 #include <sstream>
 #include <vector>
 
+#include "report.hpp"
 #include "sim/xy/run.hpp"
 #include "sim/text.hpp"
 
 namespace ap::sim::xy {
 
 namespace sc = ap::sim::xy::scenario;
+
+void report_client(BoardVerdict& v, const xy_client::ClientCounters& c, std::uint64_t frames_answered,
+                   const std::vector<xy_client::Report>& reports) {
+  v.commands = c.sent;
+  v.echoes = c.answered;
+  v.lost = c.timeouts;
+  v.rejected = c.rejected;
+  v.malformed = c.malformed;
+  v.unexpected = c.resyncs;
+  v.duplicates = c.late;
+  v.delivery.submitted = c.commands;
+  v.delivery.delivered = c.delivered;
+  v.delivery.failed = c.failed;
+  v.delivery.frames_answered = frames_answered;
+  v.delivery.given_up = c.given_up;
+  v.delivery.retransmissions = c.retransmissions;
+  v.delivery.new_frames = c.new_frames;
+  v.delivery.reports = reports;
+}
 
 std::string format_report(const sc::Scenario& s, const RunResult& r) {
   std::ostringstream o;
