@@ -1,6 +1,15 @@
+// The step function, step(): one control tick of one axis, straight-line code over the POD
+// structs of axis.hpp (docs/motion.md §3 "Structure of step(state, input, config)"): the
+// command applied (§6 "Modes", §8 "Bad input"), the goal, the tick classified, the speed law
+// with the stop at the target (§5, G9) and the transition (§4). It stays one file, with the
+// helpers only it calls, because the proofs mirror it line for line
+// (models/xy/smt/axis_encoding.hpp). What it reads from elsewhere: the transition table
+// (table.cpp) and the braking kernels (kernels.cpp), which the proofs mirror on their own.
 #include "core/xy/axis/axis.hpp"
 
 #include <limits>
+
+#include "kernels.hpp"
 
 namespace ap::xy_axis {
 namespace {
@@ -80,43 +89,6 @@ bool can_stop(int32_t v_next, int64_t room_fine, int32_t s_fine, int32_t accel) 
   // whole braking travel must end strictly before the bound: reaching it exactly at a higher
   // speed would be an arrival above the start speed.
   return v_next <= s_fine || static_cast<int64_t>(v_next) + stop_distance_fine(v_next, s_fine, accel) < room_fine;
-}
-
-// The highest speed in [lo, hi] from which the axis can still stop before the bound, or `lo`
-// if none can (a retarget closer than the stopping distance: the axis overruns and returns).
-// Braking along this exact fit instead of a fixed a-per-tick ramp leaves < 1 tick of creep at
-// the start speed before the target, so moves end within a few ticks of the ideal profile.
-//
-// f(x) = x + D(x) is increasing. For x in piece m (x - s - 1 in [m*a, (m+1)*a - 1]),
-// f(x) = (m+1)*x - a*m*(m+1)/2, linear, so the largest x with f(x) < room in that piece is
-// floor((room - 1 + a*m*(m+1)/2) / (m+1)). hi - lo <= 2a, so at most 3 pieces matter: a fixed,
-// loop-free unrolling. Ranges: room <= 2e15, a*m*(m+1)/2 <= 1e18: the sum stays < 2^63.
-int32_t best_fit(int32_t lo, int32_t hi, int64_t room, int32_t s_fine, int32_t accel) {
-  int32_t best = lo;
-  if (lo <= s_fine) {
-    best = hi < s_fine ? hi : s_fine;
-  }
-  const int64_t a = accel;
-  const int64_t base = (lo > s_fine ? static_cast<int64_t>(lo) : static_cast<int64_t>(s_fine) + 1) - s_fine - 1;
-  const int64_t m0 = base / a;
-  const auto piece = [&](int64_t m) {
-    const int64_t p_lo = s_fine + 1 + m * a;
-    const int64_t p_hi = s_fine + (m + 1) * a;
-    const int64_t num = room - 1 + (a * m) * (m + 1) / 2;
-    if (num < 0) {
-      return;
-    }
-    int64_t x = num / (m + 1);
-    x = x < p_hi ? x : p_hi;
-    x = x < hi ? x : static_cast<int64_t>(hi);
-    if (x >= p_lo && x >= lo && x > best) {
-      best = static_cast<int32_t>(x);
-    }
-  };
-  piece(m0);
-  piece(m0 + 1);
-  piece(m0 + 2);
-  return best;
 }
 
 void apply_command(State& s, const Input& in, const Config& c, bool& estop, Error& err) {
@@ -209,14 +181,6 @@ State forced_stop(const State& s) {
   return r;
 }
 
-constexpr std::array<std::array<Edge, kClassCount>, kPhaseCount> kTable = {{
-    //            EStop     EndMin   EndMax   Halt     Faster   Same     Slower
-    /* Stop  */ {{Edge::I, Edge::I, Edge::I, Edge::I, Edge::A, Edge::I, Edge::I}},
-    /* Accel */ {{Edge::X, Edge::G, Edge::H, Edge::E, Edge::J, Edge::B, Edge::D}},
-    /* Const */ {{Edge::X, Edge::G, Edge::H, Edge::E, Edge::M, Edge::L, Edge::C}},
-    /* Decel */ {{Edge::X, Edge::G, Edge::H, Edge::E, Edge::F, Edge::N, Edge::K}},
-}};
-
 }  // namespace
 
 bool config_valid(const Config& c) {
@@ -233,92 +197,6 @@ bool state_valid(const State& s) {
          s.level <= 1 && s.latch_min <= 1 && s.latch_max <= 1 && s.homed <= 1 && s.pos >= -kPosMax &&
          s.pos <= kPosMax && s.target >= -kPosMax && s.target <= kPosMax && s.v >= 0 &&
          s.v <= kFineSpeedMax && (s.v == 0) == (s.phase == Phase::Stop) && s.frac >= 0 && s.frac < kDistScale;
-}
-
-int64_t stop_distance_fine(int32_t v, int32_t v_start_fine, int32_t accel) {
-  if (v <= v_start_fine || accel <= 0) {
-    return 0;
-  }
-  // m = number of braking ticks still above the start speed: k*a < v - s  <=>  k <= (v-s-1)/a.
-  // a*m < v <= 1e9 and m+1 <= 1e9+1, so both products stay below 1.1e18 < 2^63; m*(m+1) is even.
-  const int64_t vv = v;
-  const int64_t a = accel;
-  const int64_t m = (vv - v_start_fine - 1) / a;
-  return m * vv - (a * m) * (m + 1) / 2;
-}
-
-int64_t stop_distance_usteps(const State& s, const Config& c) {
-  const int64_t f = stop_distance_fine(s.v, c.v_start * kSpeedScale, c.accel);
-  return (f + kDist - 1) / kDist;
-}
-
-Edge edge_for(Phase p, Class c) {
-  const auto pi = static_cast<uint8_t>(p);
-  const auto ci = static_cast<uint8_t>(c);
-  if (pi >= kPhaseCount || ci >= kClassCount) {
-    return Edge::X;
-  }
-  return kTable[pi][ci];
-}
-
-bool edge_guard(Edge e, Phase p, Class c) {
-  const bool stop = p == Phase::Stop;
-  const bool moving = p == Phase::Accel || p == Phase::Const || p == Phase::Decel;
-  switch (e) {
-    case Edge::A: return stop && c == Class::Faster;
-    case Edge::I: return stop && c != Class::Faster;
-    case Edge::X: return moving && c == Class::EStop;
-    case Edge::G: return moving && c == Class::EndMin;
-    case Edge::H: return moving && c == Class::EndMax;
-    case Edge::E: return moving && c == Class::Halt;
-    case Edge::J: return p == Phase::Accel && c == Class::Faster;
-    case Edge::B: return p == Phase::Accel && c == Class::Same;
-    case Edge::D: return p == Phase::Accel && c == Class::Slower;
-    case Edge::M: return p == Phase::Const && c == Class::Faster;
-    case Edge::L: return p == Phase::Const && c == Class::Same;
-    case Edge::C: return p == Phase::Const && c == Class::Slower;
-    case Edge::F: return p == Phase::Decel && c == Class::Faster;
-    case Edge::N: return p == Phase::Decel && c == Class::Same;
-    case Edge::K: return p == Phase::Decel && c == Class::Slower;
-  }
-  return false;
-}
-
-Phase edge_target(Edge e, Phase from) {
-  switch (e) {
-    case Edge::A: case Edge::J: case Edge::M: case Edge::F: return Phase::Accel;
-    case Edge::B: case Edge::L: case Edge::N: return Phase::Const;
-    case Edge::C: case Edge::D: case Edge::K: return Phase::Decel;
-    case Edge::E: case Edge::G: case Edge::H: case Edge::X: return Phase::Stop;
-    case Edge::I: return from;
-  }
-  return Phase::Stop;
-}
-
-char edge_letter(Edge e) {
-  constexpr std::array<char, kEdgeCount> k = {'A', 'B', 'C', 'D', 'E', 'F', 'G', 'H', 'I', 'J', 'K', 'L', 'M', 'N', 'X'};
-  const auto i = static_cast<uint8_t>(e);
-  return i < kEdgeCount ? k[i] : '?';
-}
-
-const char* phase_name(Phase p) {
-  switch (p) {
-    case Phase::Stop: return "STOP";
-    case Phase::Accel: return "ACCEL";
-    case Phase::Const: return "CONST";
-    case Phase::Decel: return "DECEL";
-  }
-  return "?";
-}
-
-const char* mode_name(Mode m) {
-  switch (m) {
-    case Mode::Idle: return "idle";
-    case Mode::Jog: return "jog";
-    case Mode::Position: return "position";
-    case Mode::Home: return "home";
-  }
-  return "?";
 }
 
 StepResult step(const State& s0, const Input& in, const Config& c) {

@@ -1,4 +1,4 @@
-// MIRRORS core/xy/axis/src/axis.cpp; see include/models/xy/smt/axis_encoding.hpp. Change together.
+// MIRRORS core/xy/axis/src/axis.cpp and table.cpp; see include/models/xy/smt/axis_encoding.hpp. Change together.
 #include "models/xy/smt/axis_encoding.hpp"
 
 #include <array>

@@ -2,12 +2,13 @@
 // Bit-precise Z3 encoding of ap::xy_axis::step() (core/xy/axis/src/axis.cpp).
 //
 // MIRRORS core/xy/axis/src/axis.cpp (step, apply_command, goal_of, classify, transition, the
-// validity checks and the A-L(+M,N,X) table) with the same widths: every State/Input/Config
-// field is a bit-vector of its C++ width (int8/uint8 -> 8, int32 -> 32), every int64
-// intermediate is computed in 64 bits after explicit sign extension exactly where the C++
-// code promotes, and every add/sub/mul/div records a no-overflow side condition (Check).
-// The two files MUST change together: properties/xy/smt/smt_conformance_test.cpp evaluates this
-// encoding on random concrete arguments and compares every output field with step().
+// validity checks) and core/xy/axis/src/table.cpp (the A-L(+M,N,X) table) with the same
+// widths: every State/Input/Config field is a bit-vector of its C++ width (int8/uint8 -> 8,
+// int32 -> 32), every int64 intermediate is computed in 64 bits after explicit sign extension
+// exactly where the C++ code promotes, and every add/sub/mul/div records a no-overflow side
+// condition (Check). They MUST change together: properties/xy/smt/smt_conformance_test.cpp
+// evaluates this encoding on random concrete arguments and compares every output field with
+// step().
 //
 // Kernels (stop_distance_fine, best_fit) come from axis_kernels.hpp. With Kernels::Exact
 // they are the bit-precise terms; with Kernels::Contract (used by the step-level proofs)
@@ -148,7 +149,7 @@ namespace ap::model::smt::xy_axis {
 z3::expr sym_watchdog_tick(z3::context& c, const z3::expr& silent16, const z3::expr& valid_command);
 z3::expr sym_link_alive(z3::context& c, const z3::expr& silent16);
 
-// MIRRORS edge_guard() and edge_for() of core/xy/axis/src/axis.cpp (8-bit enum codes).
+// MIRRORS edge_guard() and edge_for() of core/xy/axis/src/table.cpp (8-bit enum codes).
 z3::expr sym_edge_guard(z3::context& c, int edge, const z3::expr& phase8, const z3::expr& cls8);
 z3::expr sym_edge_for(z3::context& c, const z3::expr& phase8, const z3::expr& cls8);
 

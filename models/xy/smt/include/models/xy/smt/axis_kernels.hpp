@@ -11,7 +11,7 @@
 //             (obligation axis.overflow.kernels) proves that both instantiations compute the
 //             same values, so lemmas proved in Int hold for the Bv (= C++) kernels.
 //
-// MIRRORS core/xy/axis/src/axis.cpp stop_distance_fine() and best_fit(), and
+// MIRRORS core/xy/axis/src/kernels.cpp stop_distance_fine() and best_fit(), and
 // core/xy/axis/include/core/xy/axis/step_timer.hpp step_timer(), line for line. They MUST change
 // together; the conformance property fails when they do not.
 #include <cstdint>
