@@ -47,7 +47,6 @@
 #include <string>
 #include <vector>
 
-#include "board_rig.hpp"
 #include "protocol/xy/codec/commands.hpp"
 #include "protocol/xy/codec/layout.hpp"
 #include "protocol/xy/codec/subscribers.hpp"
@@ -56,8 +55,9 @@
 #include "core/xy/tmc2130/fields.hpp"
 #include "models/xy/echo/board_checker.hpp"
 #include "models/xy/safety/board_monitor.hpp"
-#include "rig_sensors.hpp"
 #include "fuzz/script_reader.hpp"
+#include "sim/xy/rig/board_rig.hpp"
+#include "sim/xy/rig/rig_sensors.hpp"
 
 extern "C" std::size_t LLVMFuzzerMutate(std::uint8_t* data, std::size_t size, std::size_t max_size)
     __attribute__((weak));
@@ -66,7 +66,7 @@ namespace {
 
 using namespace ap;
 using namespace ap::xy_board;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 namespace tmc = ap::xy_tmc2130;
 
 // Work bounds per input, so one long script cannot stall the run (libFuzzer grows inputs up
@@ -169,7 +169,7 @@ struct Harness {
     const xy_storage::ParameterSet stored = model::xy_echo::stored_set(rig->fram);
     (void)rig->boot();
     model::xy_echo::Boot facts = model::xy_echo::boot_facts(*rig->board, rig->in, stored);
-    facts.sensors = ap::xy_board::test::sensors_of(*rig);
+    facts.sensors = ap::sim::xy::sensors_of(*rig);
     checker.emplace(*rig->board, facts);
     monitor = model::xy_safety::BoardMonitor{};
     monitor.booted(*rig->board);
@@ -195,7 +195,7 @@ struct Harness {
     // never leaves the board, and the model is replaced at the next power-up).
     if (!power_dies_this_tick) {
       const std::span<const model::xy_echo::EchoBytes> sent(rig->tx.data() + sent_before, rig->tx.size() - sent_before);
-      for (const std::string& m : checker->after_tick(sent, ap::xy_board::test::sensors_of(*rig))) echo_disagrees(m, b.ticks());
+      for (const std::string& m : checker->after_tick(sent, ap::sim::xy::sensors_of(*rig))) echo_disagrees(m, b.ticks());
     }
     power_dies_this_tick = false;
     found.clear();

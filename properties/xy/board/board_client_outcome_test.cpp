@@ -21,11 +21,11 @@
 #include <string>
 #include <vector>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "models/xy/echo/board_checker.hpp"
 #include "pc/xy/client/client.hpp"
 #include "protocol/xy/codec/commands.hpp"
-#include "rig_sensors.hpp"
+#include "sim/xy/rig/rig_sensors.hpp"
 #include "sim/xy/outcome_oracle.hpp"
 
 namespace {

@@ -3,7 +3,7 @@
 // outcome and feeds the link watchdog; an older frame is answered with the last seq taken.
 #include <gtest/gtest.h>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "protocol/xy/codec/statuses.hpp"
 
 using namespace ap;

@@ -12,8 +12,8 @@
 #include <variant>
 #include <vector>
 
-#include "board_rig.hpp"
-#include "rig_sensors.hpp"
+#include "sim/xy/rig/board_rig.hpp"
+#include "sim/xy/rig/rig_sensors.hpp"
 #include "core/xy/frame/echo_codec.hpp"
 #include "protocol/xy/codec/commands.hpp"
 #include "protocol/xy/codec/crc16.hpp"

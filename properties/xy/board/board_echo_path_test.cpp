@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "board_rig.hpp"
-#include "rig_sensors.hpp"
+#include "sim/xy/rig/board_rig.hpp"
+#include "sim/xy/rig/rig_sensors.hpp"
 #include "core/xy/frame/echo_codec.hpp"
 #include "models/xy/echo/board_checker.hpp"
 #include "protocol/xy/codec/commands.hpp"

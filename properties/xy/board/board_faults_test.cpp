@@ -9,7 +9,7 @@
 #include <array>
 #include <vector>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "protocol/xy/codec/statuses.hpp"
 #include "core/xy/storage/store.hpp"
 #include "core/xy/tmc2130/result.hpp"

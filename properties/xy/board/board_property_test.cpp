@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <optional>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "core/xy/frame/echo_builder.hpp"
 #include "protocol/xy/codec/commands.hpp"
 #include "protocol/xy/codec/statuses.hpp"

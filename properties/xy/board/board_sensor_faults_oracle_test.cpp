@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "models/xy/sensor_faults/sensor_faults.hpp"
 #include "protocol/xy/codec/subscribers.hpp"
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "protocol/xy/codec/statuses.hpp"
 #include "protocol/xy/codec/subscribers.hpp"
-#include "rig_sensors.hpp"
+#include "sim/xy/rig/rig_sensors.hpp"
 
 using namespace ap;
 using namespace ap::xy_board;

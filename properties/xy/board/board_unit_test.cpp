@@ -3,7 +3,7 @@
 // currents, endstops, the echo at the end of the cycle, the step-counter validity flag.
 #include <gtest/gtest.h>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "protocol/xy/codec/statuses.hpp"
 #include "core/xy/tmc2130/fields.hpp"
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "board_rig.hpp"
+#include "sim/xy/rig/board_rig.hpp"
 #include "models/xy/safety/board_monitor.hpp"
 #include "protocol/xy/codec/commands.hpp"
 
