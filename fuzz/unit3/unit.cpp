@@ -20,7 +20,7 @@
 
 #include "core/unit3/board/unit.hpp"
 #include "models/unit3/pc_view.hpp"
-#include "replies.hpp"
+#include "sim/unit3/replies.hpp"
 
 namespace {
 
@@ -33,7 +33,7 @@ void require(bool ok) {
 
 std::vector<std::string> split(const std::string& rx) {
   std::string rest;
-  const auto v = ap::unit3_test::split_replies(rx, &rest);
+  const auto v = ap::sim::unit3::split_replies(rx, &rest);
   require(rest.empty());  // replies are whole or absent
   return v;
 }
@@ -51,7 +51,7 @@ struct Rig {
     eeprom.fill(0xFF);
     unit = std::make_unique<u::Unit>(eeprom);
   }
-  std::string take() { return ap::unit3_test::take_all(*unit); }
+  std::string take() { return ap::sim::unit3::take_all(*unit); }
   void byte(std::uint8_t b) {
     unit->receive(b);
     require(split(take()) == model.receive(std::string(1, static_cast<char>(b)), seen));

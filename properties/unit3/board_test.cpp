@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/unit3/board/unit.hpp"
-#include "replies.hpp"
+#include "sim/unit3/replies.hpp"
 
 namespace {
 

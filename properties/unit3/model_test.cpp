@@ -16,7 +16,7 @@
 
 #include "core/unit3/board/unit.hpp"
 #include "models/unit3/pc_view.hpp"
-#include "replies.hpp"
+#include "sim/unit3/replies.hpp"
 
 namespace {
 

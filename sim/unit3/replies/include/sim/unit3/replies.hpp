@@ -1,6 +1,8 @@
 #pragma once
 // What the PC reads from the unit (docs/unit3.md "Replies"), for the unit3 tests and fuzz
-// targets: every byte the unit's UART has queued, and that text cut after each ';'.
+// targets: every byte the unit's UART has queued, and that text cut after each ';'. A fixture
+// over the unit's firmware (core/unit3/board), shared by the property tests (properties/unit3)
+// and the fuzz target (fuzz/unit3) so both read the replies the same way.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -8,7 +10,7 @@
 
 #include "core/unit3/board/unit.hpp"
 
-namespace ap::unit3_test {
+namespace ap::sim::unit3 {
 
 inline std::string take_all(ap::unit3_board::Unit& u) {
   std::string s;
@@ -32,4 +34,10 @@ inline std::vector<std::string> split_replies(const std::string& rx, std::string
   return v;
 }
 
+}  // namespace ap::sim::unit3
+
+// The names the unit3 property tests know them by (properties/unit3).
+namespace ap::unit3_test {
+using ap::sim::unit3::split_replies;
+using ap::sim::unit3::take_all;
 }  // namespace ap::unit3_test
