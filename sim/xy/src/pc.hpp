@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "sim/xy/scenario.hpp"
-#include "sim/xy/run.hpp"
+#include "sim/xy/verdict.hpp"
 
 namespace ap::sim::xy {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "pc/xy/client/client.hpp"
-#include "sim/xy/run.hpp"   // kFnvBasis (sim/xy/board.hpp)
+#include "sim/xy/digest.hpp"
 
 namespace ap::sim::xy {
 

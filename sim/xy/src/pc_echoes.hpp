@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "sim/xy/run.hpp"   // kFnvBasis (sim/xy/board.hpp)
+#include "sim/xy/digest.hpp"
 #include "sim/xy/fault_link.hpp"
 
 namespace ap::sim::xy {

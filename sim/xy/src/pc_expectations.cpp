@@ -10,7 +10,7 @@
 #include "core/xy/frame/frames.hpp"
 #include "protocol/xy/codec/subscribers.hpp"
 #include "sim/text.hpp"
-#include "sim/xy/run.hpp"   // led_word (sim/xy/board.hpp)
+#include "sim/xy/led.hpp"
 #include "sim/xy/params.hpp"
 #include "pc_board.hpp"
 #include "pc_transport.hpp"

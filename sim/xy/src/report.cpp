@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "report.hpp"
-#include "sim/xy/run.hpp"
+#include "sim/xy/verdict.hpp"
 #include "sim/text.hpp"
 
 namespace ap::sim::xy {

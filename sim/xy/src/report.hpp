@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "pc/xy/client/client.hpp"
-#include "sim/xy/run.hpp"
+#include "sim/xy/verdict.hpp"
 
 namespace ap::sim::xy {
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pc/dds/domain.hpp"
+#include "sim/xy/board.hpp"
 #include "pc.hpp"
 
 namespace ap::sim::xy {

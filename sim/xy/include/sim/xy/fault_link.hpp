@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "sim/xy/scenario.hpp"
-#include "sim/xy/run.hpp"
+#include "sim/xy/verdict.hpp"
 
 namespace ap::sim::xy {
 

@@ -9,6 +9,7 @@
 //                   checks the expectations and the axis safety properties on the telemetry,
 //                   and returns a verdict (pass only when nothing was violated). With
 //                   RunOptions::join unset it also hosts the boards (one thread each).
+// A run's options and its verdict are sim/xy/verdict.hpp's.
 #pragma once
 
 #include <atomic>
@@ -22,61 +23,11 @@
 #include "pc/dds/bus.hpp"
 #include "sim/serve_loop.hpp"
 #include "sim/xy/scenario.hpp"
+#include "sim/xy/verdict.hpp"
 #include "pc/xy/client/client.hpp"
 #include "sim/xy/board.hpp"
 
 namespace ap::sim::xy {
-
-
-struct RunOptions {
-  std::string out_root = "out/sim";   // outputs of board 0 under out_root/NAME/ (empty: none)
-  bool realtime = false;              // --realtime: virtual time follows the wall clock
-  std::int64_t step_us = 10'000;      // lockstep granularity (telemetry sampling)
-  std::optional<std::uint32_t> domain;   // default: claim a free one (DomainLease)
-  bool join = false;                  // boards already run elsewhere (`axisproof sim board`)
-  std::string qemu_image;             // --target qemu: the boards run this image (docs/qemu.md)
-  std::ostream* log = nullptr;        // progress and the PC's report
-};
-
-struct GapRun {
-  std::int64_t t_us;        // when the PC noticed
-  std::uint32_t lost;       // retransmission timeouts in a row (no answer in between)
-};
-
-struct LinkStats {
-  std::uint64_t frames = 0, delivered = 0, dropped = 0, corrupted = 0, duplicated = 0, reordered = 0, delayed = 0,
-                cut = 0;
-};
-
-// What the client made of the user's commands (docs/protocol.md "Delivery").
-struct DeliveryStats {
-  std::uint32_t submitted = 0, delivered = 0, failed = 0;
-  std::uint64_t new_frames = 0, retransmissions = 0, given_up = 0, frames_answered = 0, frames_taken = 0;
-  std::vector<xy_client::Report> reports;   // every settled command, in settling order
-  std::uint64_t outcomes_checked = 0;    // reports compared with the board's fate of their frame
-};
-
-struct BoardVerdict {
-  std::uint32_t board = 0;
-  std::uint32_t commands = 0, echoes = 0, lost = 0, rejected = 0, malformed = 0, unexpected = 0, duplicates = 0;
-  std::vector<GapRun> gaps;
-  LinkStats to_board, to_pc;
-  std::uint64_t lost_step_risks = 0;
-  std::uint64_t echoes_model_checked = 0, echo_disagreements = 0;   // board side (models/xy/echo)
-  std::uint64_t echoes_from_board = 0;                              // echoes the bus brought
-  DeliveryStats delivery;
-};
-
-struct RunResult {
-  bool pass = false;
-  std::vector<std::string> failures;   // expectations and safety properties violated
-  std::vector<BoardVerdict> boards;
-  std::int64_t vtime_us = 0;
-  double wall_s = 0.0;
-  std::uint64_t bus_round_trips = 0;
-  std::uint32_t domain = 0;
-  std::string out_dir;
-};
 
 // Runs one scenario; throws ap::dds::Error / std::runtime_error on a bus failure.
 RunResult run_scenario(const scenario::Scenario& s, const RunOptions& opt);
@@ -88,8 +39,5 @@ int serve_board(const dds::ParticipantPtr& participant, const BoardOptions& opt,
 
 // The telemetry sample of a board.
 dds::Telemetry telemetry_of(SimBoard& b, std::uint32_t id);
-
-// A human-readable verdict (pass/fail, failures, per-board gaps and link statistics).
-std::string format_report(const scenario::Scenario& s, const RunResult& r);
 
 }  // namespace ap::sim::xy
