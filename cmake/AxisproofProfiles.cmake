@@ -57,7 +57,10 @@ function(ap_declare_profile name)
     endif()
   endforeach()
   foreach(_u IN LISTS A_USES)
-    if(NOT IS_DIRECTORY ${CMAKE_SOURCE_DIR}/${_u} AND NOT IS_DIRECTORY ${A_ROOT}/${_u})
+    # AP_PACKAGE_SHARED_DIRS: the harness's shared folders an installed package brings
+    # (axisproofConfig.cmake).
+    if(NOT IS_DIRECTORY ${CMAKE_SOURCE_DIR}/${_u} AND NOT IS_DIRECTORY ${A_ROOT}/${_u}
+       AND NOT _u IN_LIST AP_PACKAGE_SHARED_DIRS)
       message(FATAL_ERROR "ap_declare_profile(${name}): USES ${_u}: no such folder")
     endif()
     list(APPEND _cov ${_u})
@@ -80,8 +83,10 @@ function(ap_profiles_of_this_build out)
 endfunction()
 
 # In a layer's CMakeLists.txt: add <layer>/<profile> for every profile that has one, with
-# AP_PROFILE set to the profile (its tests and fuzz targets carry that label) and
-# AP_PROFILE_DIR to the folder (where its fuzz targets keep their corpora).
+# AP_PROFILE set to the profile (its tests and fuzz targets carry that label),
+# AP_PROFILE_DIR to the folder (where its fuzz targets keep their corpora) and AP_PROFILE_ROOT
+# to the profile's ROOT. A project without layer CMakeLists.txt files calls ap_add_profiles()
+# instead (cmake/AxisproofProject.cmake).
 function(ap_add_profile_dirs)
   ap_profiles_of_this_build(_profiles)
   file(RELATIVE_PATH _layer ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
@@ -91,6 +96,9 @@ function(ap_add_profile_dirs)
     if(EXISTS ${_d}/CMakeLists.txt)
       set(AP_PROFILE ${_p})
       set(AP_PROFILE_DIR ${_d})
+      # The top of the profile's tree (its declaration's ROOT): where its folders find each
+      # other (scenarios/<name> from properties/<name>) inside this tree and outside it.
+      set(AP_PROFILE_ROOT ${_root})
       if(_root STREQUAL CMAKE_SOURCE_DIR)
         add_subdirectory(${_d})
       else()

@@ -38,8 +38,16 @@
 # and (with AP_COVERAGE) the coverage report; the fuzz preset stays the optimised one for
 # long fuzzing runs (`axisproof fuzz`).
 
-# The fuzz kit's folder (the replay driver; fuzz/kit, or the installed package's copy).
-set(AP_FUZZ_KIT_DIR ${CMAKE_SOURCE_DIR}/fuzz/kit CACHE INTERNAL "")
+# The harness's files the functions below use: this tree's, or, in a project that found the
+# installed harness (find_package(axisproof) sets AP_PACKAGE_DATA_DIR and these), the package's
+# copies. AP_FUZZ_KIT_DIR: the fuzz kit (the replay driver); AP_CHECK_NO_HEAP: the core
+# libraries' heap check; AP_SIM_TEST_SUPPORT_DIR: the helpers the profiles' end-to-end tests
+# share (profile_sim_support.hpp).
+if(NOT AP_PACKAGE_DATA_DIR)
+  set(AP_FUZZ_KIT_DIR ${CMAKE_SOURCE_DIR}/fuzz/kit CACHE INTERNAL "")
+  set(AP_CHECK_NO_HEAP ${CMAKE_SOURCE_DIR}/ci/check-no-heap)
+  set(AP_SIM_TEST_SUPPORT_DIR ${CMAKE_SOURCE_DIR}/properties/sim)
+endif()
 option(AP_CFL_CHECK "Register the ctest that runs .clusterfuzzlite/build.sh locally (clang builds)" ON)
 option(AP_FUZZ_BINARIES "Build the libFuzzer binaries fuzz_<name> in a non-fuzz preset (clang)" OFF)
 if(AP_FUZZ_BINARIES AND NOT AP_FUZZ AND NOT AP_MCU_ONLY)
@@ -64,7 +72,7 @@ function(ap_core_library name)
   target_compile_options(${name} PRIVATE ${AP_CORE_FLAGS})
   target_link_libraries(${name} PUBLIC ${AP_CORE_DEPS} ${A_DEPS})
   add_custom_command(TARGET ${name} POST_BUILD
-    COMMAND ${CMAKE_COMMAND} -E env NM=${CMAKE_NM} ${CMAKE_SOURCE_DIR}/ci/check-no-heap $<TARGET_FILE:${name}>
+    COMMAND ${CMAKE_COMMAND} -E env NM=${CMAKE_NM} ${AP_CHECK_NO_HEAP} $<TARGET_FILE:${name}>
     COMMENT "heap check: ${name}" VERBATIM)
   set(AP_CORE_LIBS ${AP_CORE_LIBS} ${name} CACHE INTERNAL "core libraries")
 endfunction()
@@ -205,8 +213,9 @@ function(_ap_write_lists)
   # .clusterfuzzlite/build.sh must keep working with the standard OSS-Fuzz variables; this
   # runs it the way ClusterFuzzLite would, with the local clang and libFuzzer (asan and fuzz
   # presets; not in cov, which has no sanitizer).
+  # Not in a project outside this tree: the check runs this tree's .clusterfuzzlite/build.sh.
   if(AP_CFL_CHECK AND CMAKE_CXX_COMPILER_ID MATCHES "Clang" AND (AP_SANITIZE OR AP_FUZZ)
-     AND NOT AP_FUZZ_ENGINE AND _lines)
+     AND NOT AP_FUZZ_ENGINE AND _lines AND NOT AP_PACKAGE_DATA_DIR)
     add_test(NAME fuzz.clusterfuzzlite_build_sh
              COMMAND ${CMAKE_SOURCE_DIR}/ci/check-clusterfuzzlite ${CMAKE_BINARY_DIR}/cfl-check)
     set_tests_properties(fuzz.clusterfuzzlite_build_sh PROPERTIES LABELS fuzz TIMEOUT 900)
