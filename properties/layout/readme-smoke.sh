@@ -12,8 +12,16 @@ cd "$root" || exit 2
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/readme-smoke.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 preset=$(basename "$build")   # build/<preset> (CMakePresets.json binaryDir)
+# The profile the README's commands run without --profile: the one declared DEFAULT, read from
+# the declarations' output (no profile is named here; docs/profiles.md).
+default_profile() {  # FIELD: 1 name, 2 title (profiles.tsv)
+  awk -F'\t' -v f="$1" '$6 == 1 { print $f; exit }' "$build/profiles/profiles.tsv" 2>/dev/null
+}
+default=$(default_profile 1)
+ere_quote() { sed 's/[][\.*^$(){}?+|/]/\\&/g' <<<"$1"; }
 
 fail() { echo "FAIL readme.$key: $*"; exit 1; }
+need_default() { [[ -n $default ]] || fail "$build/profiles/profiles.tsv declares no default profile"; }
 # expect RC OUTPUT_REGEX COMMAND...: run, show the tail, check the exit status and the output.
 expect() {
   local want=$1 re=$2 rc
@@ -56,9 +64,10 @@ case $key in
     [[ $(grep -c 'NOT RUN' <<<"$out") -ge ${#stages[@]} ]] || fail "the verdict table lists fewer than ${#stages[@]} NOT RUN stages"
     for f in gate/report.md gate/report.html release/manifest.json; do [[ -s $tmp/out/$f ]] || fail "gate wrote no $f"; done
     grep -q '<testsuite' "$tmp/junit.xml" || fail "gate wrote no JUnit XML"
-    grep -q 'profile xy' <<<"$out" || fail "the verdict does not name the profile it judged"
+    need_default
+    grep -q "profile $default" <<<"$out" || fail "the verdict does not name the profile it judged"
     # The profiles the commands know (docs/profiles.md), and a name they do not know.
-    expect 0 '^xy +wireless XY positioning platform' ./axisproof gate --profile list
+    expect 0 "^$default +$(ere_quote "$(default_profile 2)")" ./axisproof gate --profile list
     expect 2 '--profile: nosuch not in \{list,' ./axisproof gate --profile nosuch ;;
   axisproof-test)
     expect 0 '100% tests passed' ./axisproof test --preset "$preset" -R '^cli\.unknown_subcommand_exits_2$' ;;
@@ -68,7 +77,7 @@ case $key in
     expect 0 '^5 obligations: 5 proved, 0 failed, 0 unknown' ./axisproof prove --only axis.dd. --jobs 2
     [[ $(grep -c '^axis\.dd\..* PROVED ' <<<"$out") -eq 5 ]] || fail "prove --jobs 2: the table does not list the 5 obligations as PROVED" ;;
   axisproof-fuzz)
-    [[ -x $build/fuzz/xy/protocol/fuzz_frame_parser || -n $(find "$build/fuzz" -name fuzz_frame_parser -type f 2>/dev/null) ]] ||
+    [[ -n $(find "$build/fuzz" -name fuzz_frame_parser -type f 2>/dev/null) ]] ||
       fail "$build has no libFuzzer binaries (this smoke is registered only where AP_FUZZ_BINARIES is on)"
     expect 0 'frame_parser' ./axisproof fuzz --target frame_parser --time 2 --jobs 1 --no-save --build-dir "$build" ;;
   axisproof-sim)
@@ -80,7 +89,7 @@ case $key in
     board=$!
     expect 0 '' ./axisproof sim run scenarios/absolute_20mm --domain "$domain" --join --out "$tmp/join"
     wait "$board" || fail "sim board exited $? ($(tail -3 "$tmp/board.log"))"
-    # The same run on the XY board's Cortex-M4 image under QEMU (docs/qemu.md).
+    # The same run on the default profile's Cortex-M4 image under QEMU (docs/qemu.md).
     expect 0 'ihold_irun: PASS' ./axisproof sim run --target qemu scenarios/ihold_irun --out "$tmp/qemu"
     grep -qx 'divergences 0' "$tmp/qemu/ihold_irun/qemu.txt" || fail "the QEMU run wrote no qemu.txt or diverged" ;;
   axisproof-frame)
@@ -89,7 +98,8 @@ case $key in
     frame=$(tail -n 1 <<<"$out")
     grep -qF -- "$frame" docs/protocol.md || fail "encode printed '$frame', which docs/protocol.md does not show"
     expect 0 'goto' ./axisproof frame decode "$frame"
-    expect 0 'goto' ./axisproof frame decode --profile xy "$frame" ;;
+    need_default
+    expect 0 'goto' ./axisproof frame decode --profile "$default" "$frame" ;;
   axisproof-regs)
     expect 0 'IHOLD_IRUN' ./axisproof regs
     expect 0 '^register,address,access,field,mask,shift,width,signed' ./axisproof regs --format csv
@@ -98,8 +108,12 @@ case $key in
     # The thesis's Tab. 3 (seed-003.md §5.2): row 15 as printed there, then the program end to
     # end over the DDS bus (docs/cnc.md) with its outputs; a line the strict dialect refuses.
     expect 0 ' 15 +0,2 +3 +25,5 +160,5 +26 ' ./axisproof gcode --table3
-    expect 0 'scenario thesis: PASS' ./axisproof gcode scenarios/xy/gcode/thesis.gcode --dialect thesis --out "$tmp/gcode"
-    for f in trace.csv path.csv path.svg profile.svg; do [[ -s $tmp/gcode/thesis/$f ]] || fail "gcode wrote no $f"; done
+    # The program is the one README.md shows.
+    program=$(grep -oE '\./axisproof gcode [^ `]+\.gcode' README.md | head -n 1 | cut -d' ' -f3)
+    [[ -f $program ]] || fail "README.md shows no './axisproof gcode PROGRAM.gcode' whose program exists"
+    name=$(basename "$program" .gcode)
+    expect 0 "scenario $name: PASS" ./axisproof gcode "$program" --dialect thesis --out "$tmp/gcode"
+    for f in trace.csv path.csv path.svg profile.svg; do [[ -s $tmp/gcode/$name/$f ]] || fail "gcode wrote no $f"; done
     printf 'N1  G1 X1\n' > "$tmp/bad.gcode"
     expect 2 'bad.gcode:1:4: BadSpacing' ./axisproof gcode "$tmp/bad.gcode" --dialect thesis ;;  # the second space
   axisproof-bench)
@@ -107,7 +121,8 @@ case $key in
     # "benchmarks (release)" stage runs one.
     expect 2 'no benchmark matches' ./axisproof bench --filter '^no such benchmark$' ;;
   ci-mutate)
-    patches=$(ls ci/mutants/*.patch | wc -l)
+    patches=$(ls ci/mutants/*/*.patch | wc -l)
+    ((patches > 0)) || fail "no mutant in ci/mutants/*/"
     expect 0 '' ci/mutate --list
     [[ $(grep -cE '^[a-z0-9]+-' <<<"$out") -ge $patches ]] || fail "ci/mutate --list names fewer mutants than the $patches patches" ;;
   ci-nightly-fuzz)
@@ -119,7 +134,8 @@ case $key in
     # A profile of one instrumented test, reported as the gate does (--build-dir, --profiles).
     grep -q '^AP_COVERAGE:BOOL=ON' "$build/CMakeCache.txt" || fail "$build is not built with coverage"
     mkdir -p "$tmp/prof"
-    LLVM_PROFILE_FILE="$tmp/prof/%m.profraw" "$build/properties/xy/protocol/protocol_unit" --gtest_brief=1 >/dev/null 2>&1 ||
+    need_default
+    LLVM_PROFILE_FILE="$tmp/prof/%m.profraw" "$build/properties/$default/protocol/protocol_unit" --gtest_brief=1 >/dev/null 2>&1 ||
       fail "protocol_unit failed"
     expect 0 'branch' ci/coverage tests --build-dir "$build" --profiles "$tmp/prof" ;;
   ci-m4-build)
