@@ -6,14 +6,35 @@
 # ap_add_axisproof()), configure it with BUILD's compiler and switches (the -D arguments),
 # build it, run its ctest and one of its scenarios with its own axisproof, and check that
 # nothing of the project's build points into the harness's tree.
-# Usage: profile-out-of-tree.sh ROOT BUILD PROFILE SCENARIO [-DVAR=VALUE...]
+# Usage: profile-out-of-tree.sh ROOT BUILD PROFILE SCENARIO [cmake configure arguments...]
+#   PROFILE -: the declared profile whose folders hold the fewest C++ files (the quickest to
+#   build; this file names none, ci/check-profile-names); SCENARIO -: the first of
+#   scenarios/PROFILE/*.scn by name.
 # AP_KEEP_SCRATCH=1 keeps the scratch folder (its path is printed).
 set -uo pipefail
 root=$1 build=$2 profile=$3 scenario=$4
 shift 4
 name=layout.profile_out_of_tree
 fail() { echo "FAIL $name: $*"; exit 1; }
+if [[ $profile == - ]]; then
+  profile=$(for env in "$build"/profiles/*.env; do
+              ( # shellcheck disable=SC1090
+                source "$env"
+                n=0
+                for d in $AP_PROFILE_DIRS; do
+                  n=$((n + $(find "$root/$d" -type f \( -name '*.cpp' -o -name '*.hpp' \) | wc -l)))
+                done
+                echo "$n $AP_PROFILE_NAME" )
+            done | sort -k1,1n -k2,2 | awk 'NR == 1 {print $2}')
+  [[ -n $profile ]] || fail "no declared profile in $build/profiles/*.env"
+fi
 [[ -f $build/profiles/$profile.env ]] || fail "no $build/profiles/$profile.env (is $build a configured build of $root?)"
+if [[ $scenario == - ]]; then
+  first=$(find "$root/scenarios/$profile" -maxdepth 1 -name '*.scn' | sort | head -n 1)
+  [[ -n $first ]] || fail "no scenarios/$profile/*.scn"
+  scenario=$(basename "$first" .scn)
+fi
+echo "profile $profile, scenario $scenario"
 
 scratch=$(mktemp -d "${TMPDIR:-/tmp}/ap-out-of-tree.XXXXXX")
 if [[ ${AP_KEEP_SCRATCH:-0} == 1 ]]; then
