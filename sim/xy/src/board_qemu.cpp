@@ -1,5 +1,8 @@
 // The simulated board's QEMU target (sim/xy/board.hpp, docs/qemu.md "Co-simulation"): the image
 // runs the board, the device models answer its transactions, and the host core mirrors it.
+// This file is the image's side: its session (start, one granted tick, the end of the run
+// with its stack report) and the answers to its SPI, ADC, I2C and pin messages. The host
+// core's side, compared with what the image did, is board_mirror.cpp.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -42,11 +45,6 @@ std::string hex(std::uint32_t v) {
 }
 
 }  // namespace
-
-void SimBoard::qemu_fail(const std::string& what) {
-  ++qemu_stats_.divergences;
-  if (violations_.size() < 100) violations_.push_back({now_us_, -1, "QEMU: " + what});
-}
 
 void SimBoard::qemu_start() {
   qemu_stop();
@@ -119,17 +117,6 @@ void SimBoard::qemu_serve(Kind until, QemuImage::Message* last) {
     }
     qemu_answer(m);
   }
-}
-
-std::uint16_t SimBoard::expander_word(const xy_board::Inputs& in) const {
-  // GPIO expander inputs: bits 0..3 endstops (x min, x max, y min, y max), 4 button,
-  // 5 charger detect, 6 USB flag, 7..8 BLE STATUS1/2.
-  std::uint16_t w = 0;
-  w = static_cast<std::uint16_t>(w | (in.endstop_min[0] != 0 ? 1U : 0U) | (in.endstop_max[0] != 0 ? 2U : 0U));
-  w = static_cast<std::uint16_t>(w | (in.endstop_min[1] != 0 ? 4U : 0U) | (in.endstop_max[1] != 0 ? 8U : 0U));
-  w = static_cast<std::uint16_t>(w | (button_ ? 16U : 0U) | (in.charger ? 32U : 0U) | (in.usb ? 64U : 0U));
-  w = static_cast<std::uint16_t>(w | (in.ble_status1 ? 128U : 0U) | (in.ble_status2 ? 256U : 0U));
-  return w;
 }
 
 void SimBoard::qemu_answer(const QemuImage::Message& m) {
@@ -290,58 +277,6 @@ void SimBoard::qemu_tick() {
     qemu_.reset();
   }
   qemu_stats_.wall_s += std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-bool SimBoard::replay(std::uint8_t dev, std::span<const std::uint8_t> mosi, std::span<std::uint8_t> miso) {
-  if (qemu_log_pos_ >= qemu_log_.size()) {
-    qemu_fail("the host core made an SPI transfer (device " + std::to_string(dev) + ") the image did not");
-    std::fill(miso.begin(), miso.end(), std::uint8_t{0});
-    return false;
-  }
-  const Transfer& t = qemu_log_[qemu_log_pos_++];
-  if (t.dev != dev || !std::equal(t.mosi.begin(), t.mosi.end(), mosi.begin(), mosi.end()) || t.miso.size() != miso.size()) {
-    qemu_fail("SPI transfer " + std::to_string(qemu_log_pos_) + " of the tick: the image sent " + std::to_string(t.mosi.size()) +
-              " bytes to device " + std::to_string(t.dev) + ", the host core " + std::to_string(mosi.size()) + " to device " +
-              std::to_string(dev) + (t.dev == dev && t.mosi.size() == mosi.size() ? " (different bytes)" : ""));
-  }
-  const std::size_t n = std::min(t.miso.size(), miso.size());
-  std::copy_n(t.miso.begin(), n, miso.begin());
-  return true;
-}
-
-xy_i2c::Status SimBoard::replay_i2c(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
-  const auto key = static_cast<std::uint8_t>(kI2cLogKey | address);
-  if (qemu_log_pos_ >= qemu_log_.size()) {
-    qemu_fail("the host core made an I2C transfer (address " + std::to_string(address) + ") the image did not");
-    return xy_i2c::Status::BusError;
-  }
-  const Transfer& t = qemu_log_[qemu_log_pos_++];
-  if (t.dev != key || !std::equal(t.mosi.begin(), t.mosi.end(), tx.begin(), tx.end()) || t.miso.size() != rx.size()) {
-    qemu_fail("transfer " + std::to_string(qemu_log_pos_) + " of the tick: the image's (device " + std::to_string(t.dev) +
-              ", " + std::to_string(t.mosi.size()) + " bytes out) is not the host core's I2C transfer to " +
-              std::to_string(address));
-  }
-  std::copy_n(t.miso.begin(), std::min(t.miso.size(), rx.size()), rx.begin());
-  return static_cast<xy_i2c::Status>(t.status);
-}
-
-void SimBoard::qemu_after_tick(bool boot) {
-  if (!qemu_) return;
-  if (qemu_log_pos_ != qemu_log_.size()) {
-    qemu_fail("the image made " + std::to_string(qemu_log_.size() - qemu_log_pos_) + " SPI transfer(s) more than the host core");
-  }
-  if (image_tx_pos_ != image_tx_.size()) {
-    qemu_fail("the image sent " + std::to_string(image_tx_.size() - image_tx_pos_) + " TX byte(s) more than the host core");
-  }
-  qemu_log_.clear();
-  qemu_log_pos_ = 0;
-  if (boot) return;
-  const std::int32_t x = board_->axis_state(xy_board::Axis::X).pos;
-  const std::int32_t y = board_->axis_state(xy_board::Axis::Y).pos;
-  if (image_pos_[0] != x || image_pos_[1] != y) {
-    qemu_fail("tick " + std::to_string(image_ticks_) + ": the image's axes are at (" + std::to_string(image_pos_[0]) + ", " +
-              std::to_string(image_pos_[1]) + "), the host core's at (" + std::to_string(x) + ", " + std::to_string(y) + ")");
-  }
 }
 
 void SimBoard::write_qemu_stats() const {

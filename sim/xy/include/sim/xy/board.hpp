@@ -12,6 +12,17 @@
 // on its UART TX line is queued and handed out by take_tx(). Harness-side commands (the
 // "environment": battery, charger, pins, reboot, probes of the models) arrive as text through
 // env(); docs/sim.md lists them. Outputs (trace.csv, waveforms.vcd, plots.svg) are optional.
+//
+// The drivers, the FRAM and the sensors are the device models every board fixture shares
+// (sim/xy/rig/parts.hpp). SimBoard's code, one concern a file:
+//   src/board.cpp          the core wired to the parts: its Hardware, boot, the tick, the checks
+//                          run beside it (echo model, safety monitor, delivery digest)
+//   src/board_physics.cpp  the machine around the parts: carriage, encoders, endstops, the
+//                          input pins, the platform's turn, the mechanics model
+//   src/board_outputs.cpp  the run's files: waveforms.vcd, trace.csv, plots.svg, path.csv
+//   src/board_env.cpp      the text of env() and its probes
+//   src/board_qemu.cpp     the QEMU target: the image's session and its transactions
+//   src/board_mirror.cpp   the host core as the image's mirror, compared tick by tick
 #pragma once
 
 #include <array>
@@ -28,13 +39,9 @@
 #include "core/xy/board/board.hpp"
 #include "models/xy/echo/board_checker.hpp"
 #include "models/xy/safety/board_monitor.hpp"
-#include "models/xy/fram/mb85rs256b.hpp"
-#include "models/xy/i2c/bus.hpp"
-#include "models/xy/icm20789/device.hpp"
-#include "models/xy/tmc2130/device.hpp"
-#include "models/xy/tmp117/device.hpp"
 #include "models/xy/mechanics/mechanics.hpp"
 #include "sim/xy/qemu_image.hpp"
+#include "sim/xy/rig/parts.hpp"
 #include "sim/xy/trace.hpp"
 
 namespace ap::model::waveform {
@@ -137,10 +144,16 @@ class SimBoard {
   [[nodiscard]] const QemuStats& qemu_stats() const { return qemu_stats_; }
 
  private:
-  struct AxisRec {
-    std::vector<std::int64_t> edges_ns;   // every STEP edge
-    std::vector<std::int8_t> dirs;
-  };
+  // A board tick in ns, the unit of the STEP edges and the waveforms' timestamps.
+  static constexpr std::int64_t kNsPerTick = 1'000'000;
+  // The waveforms' SPI devices (chip selects): TMC2130 X and Y, FRAM, encoders X and Y, the
+  // GPIO expander.
+  static constexpr std::size_t kDevTmcX = 0, kDevFram = 2, kDevEncX = 3, kDevExpander = 5;
+  // The gyro's codes per °/s at ±250 °/s (DS-000169 Table 1); `rotate` counts in them.
+  static constexpr std::int64_t kGyroLsbPerDps = 131;
+
+  // The core wired to the parts (src/board.cpp). Hardware's callbacks; on the QEMU target
+  // each one also holds the host core to what the image did (src/board_mirror.cpp).
   static void sample(void* ctx, xy_board::Inputs& in);
   static void motor(void* ctx, xy_board::Axis a, const xy_board::MotorOutput& o);
   static void uart_tx(void* ctx, std::span<const std::uint8_t> bytes);
@@ -148,7 +161,6 @@ class SimBoard {
   static void encoder_zero(void* ctx, xy_board::Axis a, std::int64_t counts);
   static void power_off(void* ctx);
   static void charger_enable(void* ctx, bool on);
-  void power_cycle_parts();
   static void frame_taken(void* ctx, const xy_frame::CommandFrame& f);
   static bool tmc_spi(void* ctx, const xy_tmc2130::Datagram& tx, xy_tmc2130::Datagram& rx);
   static bool tmc_spi_y(void* ctx, const xy_tmc2130::Datagram& tx, xy_tmc2130::Datagram& rx);
@@ -162,27 +174,49 @@ class SimBoard {
   bool fram_device(std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) noexcept;
   // One transaction on the sensor bus (TMP117 at 0x48, ICM-20789 at 0x68).
   xy_i2c::Status i2c_device(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx);
-  // The platform's turn and the TMP117's clock, before each board tick (docs/sim.md "rotate").
-  void sensors_tick();
   [[nodiscard]] model::xy_echo::Sensors sensors_now() const;
-  void motor_effect(std::size_t a, const xy_board::MotorOutput& o);
   void tx_effect(std::span<const std::uint8_t> bytes);
-
   void tick();
-  void fill_inputs(xy_board::Inputs& in);
   void check_safety();
   void echo_disagreement(const std::string& what);
-  void trace_tick();
-  std::uint16_t expander_word() const;
-  std::string probe(const std::string& subject);
-  std::int32_t usteps_per_rev(std::size_t a) const;
   void seed_fram();
+
+  // The machine around the parts (src/board_physics.cpp).
+  struct AxisRec {
+    std::vector<std::int64_t> edges_ns;   // every STEP edge
+    std::vector<std::int8_t> dirs;
+  };
+  void fill_inputs(xy_board::Inputs& in);
+  std::uint16_t expander_word() const;
+  std::uint16_t expander_word(const xy_board::Inputs& in) const;
+  // Counts of the screw's angle from carriage 0, before the offset.
+  std::int64_t encoder_raw_counts(std::size_t a) const;
+  // The encoder programmed to read `counts` where the screw stands now (Hardware::encoder_zero).
+  void zero_encoder(std::size_t a, std::int64_t counts);
+  void motor_effect(std::size_t a, const xy_board::MotorOutput& o);
+  // The platform's turn and the TMP117's clock, before each board tick (docs/sim.md "rotate").
+  void sensors_tick();
+  std::int32_t usteps_per_rev(std::size_t a) const;
   [[nodiscard]] model::xy_mechanics::Result mechanics(std::size_t a) const;
 
-  // The QEMU target (docs/qemu.md "Co-simulation"). The image runs the board; board_ above is
-  // its mirror: the host core fed the same inputs, whose SPI transfers, motor outputs and TX
-  // bytes must equal the image's, tick by tick. The image's transactions drive the device
-  // models; the mirror's are checked against them and answered with the image's replies.
+  // The run's files (src/board_outputs.cpp).
+  void open_outputs();
+  void wave_boot_encoders();
+  void wave_motor(std::size_t a, std::int64_t t0_ns, const xy_board::MotorOutput& o, const std::vector<std::int64_t>& edges);
+  void wave_expander();
+  void trace_tick();
+  void path_tick(double um_per_ustep);
+  void write_path_outputs() const;
+  void write_outputs();
+
+  // The text of env() (src/board_env.cpp).
+  std::string probe(const std::string& subject);
+
+  // The QEMU target (docs/qemu.md "Co-simulation"; src/board_qemu.cpp, src/board_mirror.cpp).
+  // The image runs the board; board_ below is its mirror: the host core fed the same inputs,
+  // whose SPI transfers, motor outputs and TX bytes must equal the image's, tick by tick. The
+  // image's transactions drive the device models; the mirror's are checked against them and
+  // answered with the image's replies.
   struct Transfer {
     std::uint8_t dev = 0;
     std::vector<std::uint8_t> mosi, miso;
@@ -201,10 +235,18 @@ class SimBoard {
   void qemu_answer(const QemuImage::Message& m);
   void qemu_tick();
   void qemu_after_tick(bool boot);
-  std::uint16_t expander_word(const xy_board::Inputs& in) const;
   void qemu_fail(const std::string& what);
   bool replay(std::uint8_t dev, std::span<const std::uint8_t> mosi, std::span<std::uint8_t> miso);
   xy_i2c::Status replay_i2c(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx);
+  // The host core's outputs of a tick against the image's: the image's motor output (which
+  // moves the carriage), its TX bytes not yet matched (which go out), the LED, the encoder
+  // programming, the charger enable and the KillSwitch.
+  xy_board::MotorOutput mirror_motor(std::size_t a, const xy_board::MotorOutput& o);
+  std::span<const std::uint8_t> mirror_tx(std::span<const std::uint8_t> bytes);
+  void mirror_led(xy_board::LedColour lit);
+  void mirror_encoder_zero(std::size_t a, std::int64_t counts);
+  void mirror_charger(bool on);
+  void mirror_kill();
   // I2C transfers share the log with SPI, keyed by this bit over the 7-bit address.
   static constexpr std::uint8_t kI2cLogKey = 0x80;
   void write_qemu_stats() const;
@@ -229,11 +271,7 @@ class SimBoard {
 
   BoardOptions opt_;
   Machine machine_;
-  model::Mb85rs256b fram_;
-  std::array<model::xy_tmc2130::Device, xy_board::kAxes> tmc_{};
-  model::xy_tmp117::Device tmp117_{};
-  model::xy_icm20789::Device gyro_{};
-  model::xy_i2c::Bus i2c_{};   // both sensors attached in the constructor
+  BoardParts parts_;   // the drivers, the FRAM and the sensor bus (sim/xy/rig/parts.hpp)
   std::unique_ptr<xy_board::Board> board_;
   std::int64_t now_us_ = 0;
   std::uint64_t ticks_ = 0;
@@ -263,8 +301,6 @@ class SimBoard {
   bool powered_off_ = false;     // the core pulled the KillSwitch
   bool charging_enabled_ = true; // the core's charger enable (docs/board.md "Charger disconnect")
   bool button_at_off_ = false;   // the button's level at the last tick while switched off
-  // Counts of the screw's angle from carriage 0, before the offset.
-  std::int64_t encoder_raw_counts(std::size_t a) const;
   // The image's encoder programming requests of this tick, per axis (QEMU mirror).
   std::array<std::optional<std::int64_t>, xy_board::kAxes> image_encoder_zero_{};
   bool image_kill_ = false;      // the image's KillSwitch pin
@@ -288,8 +324,6 @@ class SimBoard {
   };
   std::vector<PathRow> path_rows_;
   bool path_was_active_ = false;
-  void path_tick(double um_per_ustep);
-  void write_path_outputs() const;
   std::unique_ptr<std::ofstream> vcd_file_;
   std::unique_ptr<model::waveform::BoardWaveforms> wave_;
   std::array<bool, xy_board::kAxes> wave_dir_{};
