@@ -1,4 +1,4 @@
-// What the profiles' end-to-end tests share (properties/unit3/sim, properties/hc08/sim): the
+// What the profiles' end-to-end tests share (their properties/<profile>/sim): the
 // bundled scenarios of a folder, files and texts, and the line of a parse error (the profiles'
 // parsers throw the shared sim/scenario_text.hpp ParseError).
 #pragma once

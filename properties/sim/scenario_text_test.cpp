@@ -1,8 +1,9 @@
 // The plumbing the profiles' scenario languages share (sim/scenario_text.hpp), suite
 // SimScenarioText: times in exact microseconds under each dialect's limits, words and strings
-// with each dialect's escapes, the line shown in a report, the end-of-line messages, the
-// comparisons, and the file:line error. Each profile's own statements are tested with its
-// parser (properties/unit3/sim, properties/hc08/sim).
+// with each dialect's escapes (and quoted back), the line shown in a report, the end-of-line
+// messages, the comparisons (exact and within a tolerance), and the file:line error. Each
+// profile's own statements are tested with its parser (properties/<profile>/sim,
+// properties/<profile>/scenario).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -17,7 +18,7 @@ namespace t = ap::sim::text;
 
 namespace {
 
-// The two dialects as the profiles configure them (sim/unit3/src/scenario.cpp, hc08_scenario.cpp).
+// The two dialects as the profiles configure them (each profile's sim/<profile>/src/scenario.cpp).
 const t::Dialect kFull = {
     .full_escapes = true, .name_at_end = false, .cut_blank_hash = true, .one_title = false, .time = {20, 1'000'000'000'000LL}};
 const t::Dialect kPlain = {
@@ -62,7 +63,7 @@ TEST(SimScenarioText, TimesAreExactMicroseconds) {
 
 TEST(SimScenarioText, TimesStopAtTheDialectsLimits) {
   std::int64_t us = 0;
-  // Up to 10^12 us and 20 characters (unit3), a day and 15 characters (hc08).
+  // Up to 10^12 us and 20 characters (the full dialect), a day and 15 characters (the plain one).
   EXPECT_TRUE(t::parse_time("1000000", "s", us, kFull.time));
   EXPECT_EQ(us, 1'000'000'000'000LL);
   EXPECT_FALSE(t::parse_time("1000000.000001", "s", us, kFull.time));
@@ -103,6 +104,7 @@ TEST(SimScenarioText, StringErrorsNameTheFileAndLine) {
   EXPECT_EQ(err("title \"abc", kPlain), "f.scn:4: unterminated string");
   EXPECT_EQ(err("title \"abc", kFull), "f.scn:4: unterminated string");
   EXPECT_EQ(err("title \"ab\\", kFull), "f.scn:4: unterminated string");
+  EXPECT_EQ(err("title \"ab\\", kPlain), "f.scn:4: unterminated string");  // a backslash ends the line
   EXPECT_EQ(err("title \"\\q\"", kPlain), "f.scn:4: a string escapes only \\\" and \\\\");
   EXPECT_EQ(err("title \"\\n\"", kPlain), "f.scn:4: a string escapes only \\\" and \\\\");
   EXPECT_EQ(err("title \"\\q\"", kFull), "f.scn:4: unknown escape \\q");
@@ -131,6 +133,23 @@ TEST(SimScenarioText, LineReadsWordsTimesAndComparisons) {
   EXPECT_FALSE(l.peek_is("\"end\""));
   EXPECT_EQ(l.word("end"), "end");
   EXPECT_TRUE(l.done());
+  l.end();
+}
+
+TEST(SimScenarioText, LinePeeksAndAcceptsWords) {
+  t::Line l("f.scn", 3, "tol \"tol\" 5", kPlain);
+  ASSERT_NE(l.peek(), nullptr);
+  EXPECT_EQ(l.peek()->text, "tol");
+  EXPECT_FALSE(l.peek()->quoted);
+  EXPECT_FALSE(l.accept("to"));
+  EXPECT_TRUE(l.accept("tol"));
+  ASSERT_NE(l.peek(), nullptr);
+  EXPECT_TRUE(l.peek()->quoted);
+  EXPECT_FALSE(l.accept("tol"));  // a string is no word
+  EXPECT_EQ(l.string("a string"), "tol");
+  EXPECT_TRUE(l.accept("5"));
+  EXPECT_EQ(l.peek(), nullptr);
+  EXPECT_FALSE(l.accept("5"));
   l.end();
 }
 
@@ -181,6 +200,71 @@ TEST(SimScenarioText, Comparisons) {
   EXPECT_FALSE(t::compare(3, Op::Ge, 4));
 }
 
+TEST(SimScenarioText, ComparisonsAreReadFromTheirSpelling) {
+  using t::Op;
+  for (const Op op : {Op::Eq, Op::Ne, Op::Lt, Op::Le, Op::Gt, Op::Ge}) {
+    ASSERT_TRUE(t::op_of(t::op_text(op)).has_value());
+    EXPECT_EQ(*t::op_of(t::op_text(op)), op);
+  }
+  for (const char* w : {"", "=", "=<", "=>", "<>", "===", "eq", "<= "}) EXPECT_FALSE(t::op_of(w).has_value()) << w;
+}
+
+// compare_within: tol widens every comparison, slack only ==, !=, <= and >=.
+TEST(SimScenarioText, ComparisonsWithinATolerance) {
+  using t::Op;
+  struct Row {
+    Op op;
+    double got;
+    bool exact;     // tol 0, slack 0
+    bool with_tol;  // tol 2
+  };
+  const std::vector<Row> rows{
+      {Op::Eq, 101.0, false, true}, {Op::Eq, 100.0, true, true},  {Op::Eq, 103.0, false, false},
+      {Op::Ne, 101.0, true, false}, {Op::Ne, 100.0, false, false}, {Op::Ne, 103.0, true, true},
+      {Op::Lt, 100.0, false, true}, {Op::Lt, 99.0, true, true},    {Op::Lt, 102.0, false, false},
+      {Op::Le, 100.0, true, true},  {Op::Le, 101.0, false, true},  {Op::Le, 102.5, false, false},
+      {Op::Gt, 100.0, false, true}, {Op::Gt, 101.0, true, true},   {Op::Gt, 98.0, false, false},
+      {Op::Ge, 100.0, true, true},  {Op::Ge, 99.0, false, true},   {Op::Ge, 97.5, false, false},
+  };
+  for (const Row& r : rows) {
+    SCOPED_TRACE(std::string(t::op_text(r.op)) + " " + std::to_string(r.got));
+    EXPECT_EQ(t::compare_within(r.got, r.op, 100.0, 0.0, 0.0), r.exact);
+    EXPECT_EQ(t::compare_within(r.got, r.op, 100.0, 2.0, 0.0), r.with_tol);
+  }
+  // A value just past the bound: the slack lets ==, !=, <= and >= count it as on the bound.
+  const double up = 100.0 + 1e-12, down = 100.0 - 1e-12;
+  EXPECT_FALSE(t::compare_within(up, Op::Eq, 100.0, 0.0, 0.0));
+  EXPECT_TRUE(t::compare_within(up, Op::Eq, 100.0, 0.0, 1e-9));
+  EXPECT_TRUE(t::compare_within(up, Op::Ne, 100.0, 0.0, 0.0));
+  EXPECT_FALSE(t::compare_within(up, Op::Ne, 100.0, 0.0, 1e-9));
+  EXPECT_FALSE(t::compare_within(up, Op::Le, 100.0, 0.0, 0.0));
+  EXPECT_TRUE(t::compare_within(up, Op::Le, 100.0, 0.0, 1e-9));
+  EXPECT_FALSE(t::compare_within(down, Op::Ge, 100.0, 0.0, 0.0));
+  EXPECT_TRUE(t::compare_within(down, Op::Ge, 100.0, 0.0, 1e-9));
+  // The strict ones take none: on the bound stays outside.
+  EXPECT_FALSE(t::compare_within(100.0, Op::Lt, 100.0, 0.0, 1e-9));
+  EXPECT_FALSE(t::compare_within(100.0, Op::Gt, 100.0, 0.0, 1e-9));
+  EXPECT_TRUE(t::compare_within(down, Op::Lt, 100.0, 0.0, 1e-9));
+  EXPECT_FALSE(t::compare_within(up, Op::Lt, 100.0, 0.0, 1e-9));
+}
+
+// quote() is the tokenizer's inverse: what it writes reads back as the same bytes.
+TEST(SimScenarioText, QuotedStringsReadBack) {
+  EXPECT_EQ(t::quote("a \"b\" \\ # c", kPlain), "\"a \\\"b\\\" \\\\ # c\"");
+  EXPECT_EQ(t::quote("", kPlain), "\"\"");
+  EXPECT_EQ(t::quote("D+;\r\n\t\x01\x7f\"", kFull), "\"D+;\\r\\n\\t\\x01\\x7f\\\"\"");
+  std::string every;  // every byte; the plain dialect has no escape for a line break
+  for (int b = 0; b < 256; ++b) every += static_cast<char>(b);
+  std::string no_break = every;
+  no_break.erase(static_cast<std::size_t>('\n'), 1);
+  for (const auto& [d, text] : {std::make_pair(kFull, every), std::make_pair(kPlain, no_break)}) {
+    const auto toks = t::tokenize("raw " + t::quote(text, d) + " # c", "f.scn", 1, d);
+    ASSERT_EQ(toks.size(), 2U);
+    EXPECT_TRUE(toks[1].quoted);
+    EXPECT_EQ(toks[1].text, text);
+  }
+}
+
 TEST(SimScenarioText, NamesAndFiles) {
   EXPECT_TRUE(t::valid_name("mode_b-90"));
   EXPECT_FALSE(t::valid_name(""));
@@ -194,6 +278,7 @@ TEST(SimScenarioText, NamesAndFiles) {
   const t::ParseError e("a.scn", 12, "what");
   EXPECT_STREQ(e.what(), "a.scn:12: what");
   EXPECT_EQ(e.line(), 12);
+  EXPECT_EQ(e.file(), "a.scn");
 }
 
 TEST(SimScenarioText, TheHeaderStatements) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -21,6 +22,18 @@ bool compare(std::int64_t got, Op op, std::int64_t want) {
   return false;
 }
 
+bool compare_within(double got, Op op, double want, double tol, double slack) {
+  switch (op) {
+    case Op::Eq: return std::abs(got - want) <= tol + slack;
+    case Op::Ne: return std::abs(got - want) > tol + slack;
+    case Op::Lt: return got < want + tol;
+    case Op::Le: return got <= want + tol + slack;
+    case Op::Gt: return got > want - tol;
+    case Op::Ge: return got >= want - tol - slack;
+  }
+  return false;
+}
+
 const char* op_text(Op op) {
   switch (op) {
     case Op::Eq: return "==";
@@ -31,6 +44,13 @@ const char* op_text(Op op) {
     case Op::Ge: return ">=";
   }
   return "?";
+}
+
+std::optional<Op> op_of(std::string_view w) {
+  for (const Op op : {Op::Eq, Op::Ne, Op::Lt, Op::Le, Op::Gt, Op::Ge}) {
+    if (w == op_text(op)) return op;
+  }
+  return std::nullopt;
 }
 
 bool parse_time(const std::string& number, const std::string& unit, std::int64_t& us, const TimeRules& rules) {
@@ -103,12 +123,12 @@ std::vector<Token> tokenize(const std::string& s, const std::string& file, int n
           t.text += d;
           continue;
         }
+        if (i >= s.size()) throw ParseError(file, n, "unterminated string");
         if (!dialect.full_escapes) {
-          if (i >= s.size() || (s[i] != '"' && s[i] != '\\')) throw ParseError(file, n, "a string escapes only \\\" and \\\\");
+          if (s[i] != '"' && s[i] != '\\') throw ParseError(file, n, "a string escapes only \\\" and \\\\");
           t.text += s[i++];
           continue;
         }
-        if (i >= s.size()) throw ParseError(file, n, "unterminated string");
         const char e = s[i++];
         switch (e) {
           case '"': t.text += '"'; break;
@@ -137,6 +157,32 @@ std::vector<Token> tokenize(const std::string& s, const std::string& file, int n
   return out;
 }
 
+std::string quote(const std::string& s, const Dialect& d) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string o = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') {
+      o += '\\';
+      o += c;
+    } else if (!d.full_escapes) {
+      o += c;
+    } else if (c == '\r') {
+      o += "\\r";
+    } else if (c == '\n') {
+      o += "\\n";
+    } else if (c == '\t') {
+      o += "\\t";
+    } else if (const auto b = static_cast<unsigned char>(c); b < 0x20 || b == 0x7f) {
+      o += "\\x";
+      o += kHex[b >> 4];
+      o += kHex[b & 0xF];
+    } else {
+      o += c;
+    }
+  }
+  return o + "\"";
+}
+
 std::string shown(const std::string& raw, const Dialect& d) {
   std::string s = raw.substr(raw.find_first_not_of(" \t"));
   if (d.cut_blank_hash) {
@@ -151,6 +197,12 @@ std::string shown(const std::string& raw, const Dialect& d) {
 const Token& Line::next(const char* what) const {
   if (done()) fail(d_.name_at_end ? std::string("expected ") + what + " at the end of the line" : std::string("unexpected end of line"));
   return t_[i_];
+}
+
+bool Line::accept(const char* w) {
+  if (!peek_is(w)) return false;
+  ++i_;
+  return true;
 }
 
 std::string Line::word(const char* what) {
@@ -190,12 +242,7 @@ std::int64_t Line::time() {
 
 Op Line::op() {
   const std::string w = word("a comparison");
-  if (w == "==") return Op::Eq;
-  if (w == "!=") return Op::Ne;
-  if (w == "<") return Op::Lt;
-  if (w == "<=") return Op::Le;
-  if (w == ">") return Op::Gt;
-  if (w == ">=") return Op::Ge;
+  if (const auto op = op_of(w)) return *op;
   fail("unknown comparison '" + w + "' (== != < <= > >=)");
 }
 

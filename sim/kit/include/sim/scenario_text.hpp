@@ -1,16 +1,18 @@
 // The plumbing every line-based scenario language of sim/ shares ("Scenario language" in each
 // profile's docs/*-sim.md page): words and "strings" split on blanks, `#` comments,
 // times with a unit, comparisons, and the "file:line: message" error. Each profile's parser
-// keeps only its own statements and quantities; where the two languages were written to differ
+// keeps only its own statements and quantities; where the languages were written to differ
 // (string escapes, the end-of-line message, the time limits, the line shown in the report) a
-// Dialect says which, so one implementation serves both.
+// Dialect says which, so one implementation serves them all.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace ap::sim::text {
@@ -18,16 +20,25 @@ namespace ap::sim::text {
 class ParseError : public std::runtime_error {
  public:
   ParseError(const std::string& file, int line, const std::string& what)
-      : std::runtime_error(file + ":" + std::to_string(line) + ": " + what), line_(line) {}
+      : std::runtime_error(file + ":" + std::to_string(line) + ": " + what), file_(file), line_(line) {}
+  [[nodiscard]] const std::string& file() const { return file_; }
   [[nodiscard]] int line() const { return line_; }
 
  private:
+  std::string file_;
   int line_;
 };
 
 enum class Op : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge };
 bool compare(std::int64_t got, Op op, std::int64_t want);
+// A measured value against a bound: `tol` makes == a band (|got - want| <= tol) and != its
+// outside, and widens the inequalities (got < want + tol, got <= want + tol, got > want - tol,
+// got >= want - tol); `slack` more is allowed for ==, !=, <= and >= (never for the strict ones),
+// so a value exactly on a bound after a unit conversion holds.
+bool compare_within(double got, Op op, double want, double tol, double slack);
 const char* op_text(Op op);
+// "==", "!=", "<", "<=", ">", ">=" -> the comparison; nullopt for any other word.
+std::optional<Op> op_of(std::string_view w);
 
 // How long a time's number may be written and how far a run may reach.
 struct TimeRules {
@@ -57,6 +68,11 @@ struct Token {
 // Words split on blanks; "strings" with the dialect's escapes; `#` outside a string ends the line.
 std::vector<Token> tokenize(const std::string& s, const std::string& file, int n, const Dialect& d);
 
+// `s` as a "string" the dialect's tokenizer reads back as `s`: \" and \\ escaped, and in the
+// full dialect the control bytes too (\r \n \t, the others \xHH). The plain dialect has no
+// escape for a line break: `s` holds none.
+std::string quote(const std::string& s, const Dialect& d);
+
 // The statement as written, for the report: without its leading blanks and its comment.
 // `raw` holds at least one token.
 std::string shown(const std::string& raw, const Dialect& d);
@@ -70,6 +86,10 @@ class Line {
   [[noreturn]] void fail(const std::string& what) const { throw ParseError(file_, n_, what); }
   [[nodiscard]] bool done() const { return i_ >= t_.size(); }
   [[nodiscard]] bool peek_is(const char* w) const { return !done() && !t_[i_].quoted && t_[i_].text == w; }
+  // The next token, left in place; nullptr at the end of the line.
+  [[nodiscard]] const Token* peek() const { return done() ? nullptr : &t_[i_]; }
+  // Takes the word `w` when it comes next.
+  bool accept(const char* w);
   std::string word(const char* what);
   void expect_word(const char* w);
   std::string string(const char* what);
