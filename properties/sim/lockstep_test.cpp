@@ -1,18 +1,23 @@
 // The lockstep run the profiles' end-to-end layers share (sim/lockstep.hpp, sim/serve_loop.hpp),
 // suite SimLockstep: the run's frame around a profile's board and PC side (the out folder, the
-// report, the board's exit code, a refused period), the times it steps through, the fields of a
-// board's env replies and the `violation INDEX` reply. The PC sides and boards themselves are
-// tested with their profiles (properties/unit3/sim, properties/hc08/sim).
+// report, the board's exit code, a refused period, several numbered boards, a joined run's
+// report), the times it steps through, the fields of a board's env replies and the
+// `violation INDEX` reply. The PC sides and boards themselves are tested with their profiles
+// (properties/<profile>/sim).
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "sim/lockstep.hpp"
@@ -109,6 +114,85 @@ TEST(SimLockstep, AJoinedRunHostsNoBoardAndWritesNothing) {
   EXPECT_TRUE(r.out_dir.empty());
   EXPECT_EQ(board_out, "untouched");
   EXPECT_FALSE(fs::exists(o.out_root + "/name/report.txt"));
+}
+
+// Several boards: each is served once with its own number and the run's out folder; a board
+// that fails is named by its number.
+TEST(SimLockstep, SeveralBoardsAreServedAndNamedByNumber) {
+  Options o;
+  o.out_root = std::string(AP_BINARY_DIR) + "/sim-out/lockstep-boards";
+  std::ostringstream log;
+  o.log = &log;
+  std::mutex m;
+  std::multiset<std::uint32_t> served;
+  std::set<std::string> dirs;
+  const sim::LockstepBoards boards{.count = 3, .numbered = true, .report_when_joined = false};
+  const Result r = sim::run_lockstep(
+      "test", "name", o, boards,
+      [&](const ap::dds::ParticipantPtr&, std::uint32_t b, const std::string& out_dir, const std::atomic<bool>*) {
+        {
+          const std::lock_guard<std::mutex> g(m);
+          served.insert(b);
+          dirs.insert(out_dir);
+        }
+        if (b == 2) throw std::runtime_error("board broke");
+        return b == 1 ? 2 : 0;
+      },
+      [](std::uint32_t) { return Result{}; },
+      [](const Result& res) { return std::to_string(res.failures.size()) + "\n"; });
+  EXPECT_EQ(served, (std::multiset<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(dirs, (std::set<std::string>{o.out_root + "/name"}));
+  EXPECT_FALSE(r.pass);
+  EXPECT_EQ(r.failures, (std::vector<std::string>{"board 1 did not shut down cleanly (code 2)",
+                                                  "board 2 did not shut down cleanly (code 3)"}));
+  EXPECT_EQ(log.str(), "board 2: board broke\n");
+  EXPECT_EQ(slurp(o.out_root + "/name/report.txt"), "2\n");
+}
+
+// A joined run that keeps its report: out_root/NAME/report.txt is written, nothing is removed,
+// no board is hosted, and the result names no out folder (the boards' outputs are elsewhere).
+TEST(SimLockstep, AJoinedRunMayKeepItsReport) {
+  Options o;
+  o.out_root = std::string(AP_BINARY_DIR) + "/sim-out/lockstep-join-report";
+  o.join = true;
+  o.domain = 8;
+  const std::string dir = o.out_root + "/name";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir + "/trace.csv") << "the boards' own";
+  bool hosted = false;
+  const sim::LockstepBoards boards{.count = 2, .numbered = true, .report_when_joined = true};
+  const Result r = sim::run_lockstep(
+      "test", "name", o, boards,
+      [&](const ap::dds::ParticipantPtr&, std::uint32_t, const std::string&, const std::atomic<bool>*) {
+        hosted = true;
+        return 0;
+      },
+      [](std::uint32_t) { return Result{}; }, [](const Result& res) { return std::string(res.pass ? "PASS\n" : "FAIL\n"); });
+  EXPECT_TRUE(r.pass);
+  EXPECT_FALSE(hosted);
+  EXPECT_EQ(r.domain, 8U);
+  EXPECT_TRUE(r.out_dir.empty());
+  EXPECT_EQ(slurp(dir + "/report.txt"), "PASS\n");
+  EXPECT_EQ(slurp(dir + "/trace.csv"), "the boards' own");
+}
+
+// A PC side that throws: the boards are told to stop, joined, and the error goes on.
+TEST(SimLockstep, APcSideThatThrowsStopsTheBoards) {
+  Options o;
+  std::atomic<int> stopped{0};
+  const sim::LockstepBoards boards{.count = 2, .numbered = true, .report_when_joined = false};
+  EXPECT_THROW(sim::run_lockstep(
+                   "test", "name", o, boards,
+                   [&](const ap::dds::ParticipantPtr&, std::uint32_t, const std::string&, const std::atomic<bool>* stop) {
+                     while (!stop->load()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                     ++stopped;
+                     return 1;
+                   },
+                   [](std::uint32_t) -> Result { throw std::runtime_error("bus failure"); },
+                   [](const Result&) { return std::string(); }),
+               std::runtime_error);
+  EXPECT_EQ(stopped.load(), 2);
 }
 
 TEST(SimLockstep, APeriodMustBePositive) {

@@ -1,8 +1,8 @@
-// The lockstep run of one scenario against one simulated unit, the same for the profiles'
-// end-to-end layers (their docs/*-sim.md pages; the lockstep of docs/dds.md): claim a
-// DDS domain, host the board on a thread unless it runs elsewhere (--join), drive it from the
-// PC side in virtual time, shut it down and write the report. Each profile keeps its own PC
-// side (what it sends, reads and judges) and its own board.
+// The lockstep run of one scenario against one or more simulated boards, the same for the
+// profiles' end-to-end layers (their docs/*-sim.md pages; the lockstep of docs/dds.md): claim a
+// DDS domain, host each board on a thread unless they run elsewhere (--join), drive them from
+// the PC side in virtual time, shut them down and write the report. Each profile keeps its own
+// PC side (what it sends, reads and judges, its fault links and pacing) and its own board.
 #pragma once
 
 #include <algorithm>
@@ -22,6 +22,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "pc/dds/bus.hpp"
@@ -125,13 +126,24 @@ inline std::set<std::int64_t> lockstep_times(std::int64_t step_us, std::int64_t 
   return t;
 }
 
-// Runs one scenario. `serve(participant, out_dir, stop)` is the profile's board side (its
-// serve_board, returning 0 on an orderly shutdown); `run_pc(domain)` its PC side, returning the
-// profile's RunResult; `report(result)` the verdict as text, also written to out_dir/report.txt.
-// Options: out_root, step_us, domain, join, log (the profiles' RunOptions).
+// The boards a run hosts when it does not join them, and how its verdict and log name them.
+struct LockstepBoards {
+  std::uint32_t count = 1;          // boards 0..count-1 on the bus, each served on its own thread
+  bool numbered = false;            // "board N did not shut down cleanly", log "board N: ..." (else
+                                    // "the board ...", log "WHO board: ...")
+  bool report_when_joined = false;  // a joined run writes out_root/NAME/report.txt too (its
+                                    // boards' outputs are the other process's)
+};
+
+// Runs one scenario. `serve(participant, board, out_dir, stop)` serves board number `board` (the
+// profile's serve_board, returning 0 on an orderly shutdown; out_dir is the run's, the profile
+// decides which board writes there); `run_pc(domain)` is the PC side, returning the profile's
+// RunResult (pass, failures, domain, out_dir); `report(result)` the verdict as text, also
+// written to out_dir/report.txt. The out folder is emptied first unless the run joins boards
+// that run elsewhere. Options: out_root, step_us, domain, join, log (the profiles' RunOptions).
 template <class Options, class Serve, class RunPc, class Report>
-auto run_lockstep(const std::string& who, const std::string& name, const Options& opt, Serve serve, RunPc run_pc,
-                  Report report) {
+auto run_lockstep(const std::string& who, const std::string& name, const Options& opt, const LockstepBoards& boards,
+                  Serve serve, RunPc run_pc, Report report) {
   if (opt.step_us <= 0) throw std::runtime_error(who + " run: the lockstep period must be positive");
   dds::use_loopback_config(false);
   std::optional<dds::DomainLease> lease;
@@ -141,39 +153,64 @@ auto run_lockstep(const std::string& who, const std::string& name, const Options
     // A stale trace of an earlier run must not pass for this one's.
     std::filesystem::remove_all(out_dir);
   }
+  const auto board_name = [&](std::uint32_t b) { return boards.numbered ? "board " + std::to_string(b) : std::string(); };
   std::atomic<bool> stop{false};
-  std::thread board;
-  int rc = 0;
+  std::vector<std::thread> threads;
+  std::vector<int> rc(opt.join ? 0 : boards.count, 0);
   dds::ParticipantPtr board_pp;
-  if (!opt.join) {
-    board_pp = dds::make_participant(domain);
-    board = std::thread([&] {
-      try {
-        rc = serve(board_pp, out_dir, &stop);
-      } catch (const std::exception& e) {
-        rc = 3;
-        if (opt.log != nullptr) *opt.log << who << " board: " << e.what() << '\n';
-      }
-    });
-  }
+  const auto join_all = [&] {
+    for (auto& th : threads) {
+      if (th.joinable()) th.join();
+    }
+  };
   decltype(run_pc(domain)) r;
   try {
+    if (!opt.join) {
+      board_pp = dds::make_participant(domain);
+      for (std::uint32_t b = 0; b < boards.count; ++b) {
+        threads.emplace_back([&, b] {
+          try {
+            rc[b] = serve(board_pp, b, out_dir, &stop);
+          } catch (const std::exception& e) {
+            rc[b] = 3;
+            if (opt.log != nullptr) *opt.log << (boards.numbered ? board_name(b) : who + " board") << ": " << e.what() << '\n';
+          }
+        });
+      }
+    }
     r = run_pc(domain);
   } catch (...) {
     stop = true;
-    if (board.joinable()) board.join();
+    join_all();
     throw;
   }
-  if (board.joinable()) board.join();
-  if (!opt.join && rc != 0) r.failures.push_back("the board did not shut down cleanly (code " + std::to_string(rc) + ")");
+  join_all();
+  for (std::uint32_t b = 0; b < rc.size(); ++b) {
+    if (rc[b] == 0) continue;
+    r.failures.push_back((boards.numbered ? board_name(b) : std::string("the board")) + " did not shut down cleanly (code " +
+                         std::to_string(rc[b]) + ")");
+  }
   r.pass = r.failures.empty();
   r.domain = domain;
   r.out_dir = opt.join ? std::string() : out_dir;
-  if (!r.out_dir.empty()) {
-    std::filesystem::create_directories(r.out_dir);
-    std::ofstream(r.out_dir + "/report.txt") << report(r);
+  const std::string report_dir = opt.join && !boards.report_when_joined ? std::string() : out_dir;
+  if (!report_dir.empty()) {
+    std::filesystem::create_directories(report_dir);
+    std::ofstream(report_dir + "/report.txt") << report(r);
   }
   return r;
+}
+
+// The run of one board (board 0): `serve(participant, out_dir, stop)`.
+template <class Options, class Serve, class RunPc, class Report>
+auto run_lockstep(const std::string& who, const std::string& name, const Options& opt, Serve serve, RunPc run_pc,
+                  Report report) {
+  return run_lockstep(
+      who, name, opt, LockstepBoards{},
+      [&](const dds::ParticipantPtr& pp, std::uint32_t, const std::string& out_dir, const std::atomic<bool>* stop) {
+        return serve(pp, out_dir, stop);
+      },
+      std::move(run_pc), std::move(report));
 }
 
 }  // namespace ap::sim
