@@ -1,8 +1,8 @@
 // The scenario parser's rejections and the less common statements (docs/scenarios.md):
-// every malformed statement is a ParseError naming the file, the line and the problem; every
-// verb, setup key, subject family and unit parses to the documented canonical value; the
-// printer covers every optional part; holds() applies every operator; the equality used by the
-// round-trip property distinguishes every field.
+// every malformed statement is a ParseError (the shared kit's) naming the file, the line and
+// the problem; every verb, setup key, subject family and unit parses to the documented
+// canonical value; the printer covers every optional part; holds() applies every operator; the
+// equality used by the round-trip property distinguishes every field.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -37,6 +37,10 @@ sc::Scenario without_lines(sc::Scenario s) {
 
 sc::Scenario round_trip(const sc::Scenario& s) { return without_lines(sc::parse(sc::to_text(s), "printed")); }
 
+// A word missing at the end of a statement and a word left over after it are the shared kit's
+// messages (sim/scenario_text.hpp, the dialect that names the missing word): "expected X at the
+// end of the line" and "unexpected 'W' at the end of the line". They say what the parser said
+// before it read its lines with the kit ("expected X", "unexpected 'W'"), and where.
 struct Bad {
   std::string text;      // appended to kHead unless `whole`
   std::string message;   // expected e.what()
@@ -52,7 +56,7 @@ TEST(dds_scenario_errors, HeaderStatementsAreChecked) {
       {"scenario T\n", "t.scn:1: scenario name must be [a-z0-9_-]+", true},
       {"scenario a!\n", "t.scn:1: scenario name must be [a-z0-9_-]+", true},
       {"scenario a~\n", "t.scn:1: scenario name must be [a-z0-9_-]+", true},
-      {"scenario\n", "t.scn:1: expected a scenario name", true},
+      {"scenario\n", "t.scn:1: expected a scenario name at the end of the line", true},
       {"scenario t\nscenario u\n", "t.scn:2: second 'scenario' line", true},
       {"scenario t\nduration 0 s\n", "t.scn:2: duration must be positive", true},
       {"scenario t\nduration -5 s\n", "t.scn:2: run duration must not be negative", true},
@@ -115,7 +119,7 @@ TEST(dds_scenario_errors, SetupAndFaultStatementsAreChecked) {
       {"board endstop x mid 1 mm\n", "t.scn:3: endstop must be min|max, got 'mid'"},
       {"board fram accel 5 mm\n", "t.scn:3: fram values are raw integers"},
       {"board param acc@l 5\n", "t.scn:3: expected a parameter name, got 'acc@l'"},
-      {"board ble session extra\n", "t.scn:3: unexpected 'extra'"},
+      {"board ble session extra\n", "t.scn:3: unexpected 'extra' at the end of the line"},
       {"fault lose 5 %\n", "t.scn:3: fault kind must be drop|duplicate|reorder|corrupt|delay, got 'lose'"},
       {"fault drop 5 ms\n", "t.scn:3: fault rate: expected a rate in %, got a time (us, ms, s, min)"},
       {"fault delay 5 %\n", "t.scn:3: delay: expected a time (us, ms, s, min), got a rate in %"},
@@ -123,7 +127,7 @@ TEST(dds_scenario_errors, SetupAndFaultStatementsAreChecked) {
       {"fault drop 5 % sideways\n", "t.scn:3: fault direction (or from T [to T]) must be both|to_board|to_pc, got 'sideways'"},
       {"fault drop 5 % from 2 s to 1 s\n", "t.scn:3: fault ends before it starts"},
       {"fault drop 5 % from 11 s\n", "t.scn:3: fault starts after the end of the run"},
-      {"fault drop 5 % from\n", "t.scn:3: expected fault start"},
+      {"fault drop 5 % from\n", "t.scn:3: expected fault start at the end of the line"},
   };
   for (const Bad& b : cases) {
     SCOPED_TRACE(b.text);
@@ -133,9 +137,9 @@ TEST(dds_scenario_errors, SetupAndFaultStatementsAreChecked) {
 
 TEST(dds_scenario_errors, ActionsAreChecked) {
   const std::vector<Bad> cases{
-      {"at\n", "t.scn:3: expected action time"},
-      {"at 1 s\n", "t.scn:3: expected an action"},
-      {"at 1 s set\n", "t.scn:3: expected the rest of the action"},
+      {"at\n", "t.scn:3: expected action time at the end of the line"},
+      {"at 1 s\n", "t.scn:3: expected an action at the end of the line"},
+      {"at 1 s set\n", "t.scn:3: expected the rest of the action at the end of the line"},
       {"at 1 s set jerk 5\n", "t.scn:3: unknown action 'set jerk'"},
       {"at 1 s link up\n", "t.scn:3: unknown action 'link up'"},
       {"at abc stop x\n", "t.scn:3: expected action time, got 'abc'"},
@@ -144,13 +148,13 @@ TEST(dds_scenario_errors, ActionsAreChecked) {
       {"at 1 s @0x stop x\n", "t.scn:3: bad board selector '@0x'"},
       {"at 1 s jog x up\n", "t.scn:3: jog direction must be +|-, got 'up'"},
       {"at 1 s jog x + medium\n", "t.scn:3: jog speed must be fast|slow, got 'medium'"},
-      {"at 1 s stop\n", "t.scn:3: expected an axis (x or y)"},
+      {"at 1 s stop\n", "t.scn:3: expected an axis (x or y) at the end of the line"},
       {"at 1 s move x 5 mm/s\n", "t.scn:3: distance: expected a length (um, mm, ...), got a speed (um/s, mm/s, ...)"},
       {"at 1 s set speed medium 5 mm/s\n", "t.scn:3: speed level must be fast|slow, got 'medium'"},
       {"at 1 s set speed fast -5 mm/s\n", "t.scn:3: speed must not be negative"},
       {"at 1 s set accel 5 mm\n",
        "t.scn:3: acceleration: expected an acceleration (um/s2, mm/s2, ...), got a length (um, mm, ...)"},
-      {"at 1 s save now\n", "t.scn:3: unexpected 'now'"},
+      {"at 1 s save now\n", "t.scn:3: unexpected 'now' at the end of the line"},
       {"at 1 s subscribe humidity\n",
        "t.scn:3: subscriber must be battery|charge_current|temperature|rotation|all, got 'humidity'"},
       {"at 1 s usb on\n", "t.scn:3: plug state must be plug|unplug, got 'on'"},
@@ -165,13 +169,13 @@ TEST(dds_scenario_errors, ActionsAreChecked) {
       {"at 1 s tmc x IRUN -1\n", "t.scn:3: field value must not be negative"},
       {"at 1 s tmc x IRUN 12 mA\n", "t.scn:3: field value: expected a plain number, got a current (mA, A)"},
       {"at 1 s link cut 2 mm\n", "t.scn:3: cut duration: expected a time (us, ms, s, min), got a length (um, mm, ...)"},
-      {"at 1 s link restore now\n", "t.scn:3: unexpected 'now'"},
+      {"at 1 s link restore now\n", "t.scn:3: unexpected 'now' at the end of the line"},
       {"at 1 s peripherals dim\n", "t.scn:3: peripherals must be on|off, got 'dim'"},
       {"at 1 s endstop x mid on\n", "t.scn:3: endstop must be min|max, got 'mid'"},
       {"at 1 s endstop x min maybe\n", "t.scn:3: endstop state must be on|off, got 'maybe'"},
       {"at 1 s button tap\n", "t.scn:3: button action must be press|hold, got 'tap'"},
       {"at 1 s raw 0100\n", "t.scn:3: raw frame must be a \"quoted string\""},
-      {"at 1 s raw\n", "t.scn:3: expected a \"quoted\" frame"},
+      {"at 1 s raw\n", "t.scn:3: expected a \"quoted\" frame at the end of the line"},
   };
   for (const Bad& b : cases) {
     SCOPED_TRACE(b.text);
@@ -187,15 +191,15 @@ TEST(dds_scenario_errors, ExpectationsAreChecked) {
       {"expect from 2 s to 1 s x.pos == 1 mm\n", "t.scn:3: window ends before it starts"},
       {"expect from 1 s to 11 s x.pos == 1 mm\n", "t.scn:3: expectation after the end of the run"},
       {"expect by 12 s x.status == reached\n", "t.scn:3: expectation after the end of the run"},
-      {"expect at 1 s\n", "t.scn:3: expected a subject"},
-      {"expect at 1 s x.pos\n", "t.scn:3: expected a comparison (== != < <= > >=)"},
+      {"expect at 1 s\n", "t.scn:3: expected a subject at the end of the line"},
+      {"expect at 1 s x.pos\n", "t.scn:3: expected a comparison (== != < <= > >=) at the end of the line"},
       {"expect at 1 s x.pos =< 1 mm\n", "t.scn:3: unknown comparison '=<'"},
       {"expect at 1 s x.pos ==\n", "t.scn:3: subject x.pos needs a length (um, mm, ...)"},
-      {"expect end gaps ==\n", "t.scn:3: expected an expected value"},
+      {"expect end gaps ==\n", "t.scn:3: expected an expected value at the end of the line"},
       {"expect at 1 s x.status == re@ched\n", "t.scn:3: expected an expected value, got 're@ched'"},
       {"expect at 1 s x.status == reached tol 1\n", "t.scn:3: a tolerance needs a numeric value"},
       {"expect at 1 s x.pos == 1 mm tol -1 um\n", "t.scn:3: tolerance must not be negative"},
-      {"expect at 1 s x.pos == 1 mm tol\n", "t.scn:3: expected tolerance"},
+      {"expect at 1 s x.pos == 1 mm tol\n", "t.scn:3: expected tolerance at the end of the line"},
       {"expect at 1 s x.speed >= +a\n", "t.scn:3: subject x.speed needs a speed (um/s, mm/s, ...)"},
       {"expect at 1 s board.battery == 3 mA\n",
        "t.scn:3: expected value: expected a voltage (mV, V), got a current (mA, A)"},
@@ -421,12 +425,12 @@ TEST(dds_scenario_errors, HoldsEveryOperator) {
     bool with_tol;   // tol 2 um
   };
   const std::vector<Row> rows{
-      {sc::Op::eq, 101.0, false, true}, {sc::Op::eq, 100.0, true, true},  {sc::Op::eq, 103.0, false, false},
-      {sc::Op::ne, 101.0, true, false}, {sc::Op::ne, 100.0, false, false}, {sc::Op::ne, 103.0, true, true},
-      {sc::Op::lt, 100.0, false, true}, {sc::Op::lt, 99.0, true, true},    {sc::Op::lt, 102.0, false, false},
-      {sc::Op::le, 100.0, true, true},  {sc::Op::le, 101.0, false, true},  {sc::Op::le, 102.5, false, false},
-      {sc::Op::gt, 100.0, false, true}, {sc::Op::gt, 101.0, true, true},   {sc::Op::gt, 98.0, false, false},
-      {sc::Op::ge, 100.0, true, true},  {sc::Op::ge, 99.0, false, true},   {sc::Op::ge, 97.5, false, false},
+      {sc::Op::Eq, 101.0, false, true}, {sc::Op::Eq, 100.0, true, true},  {sc::Op::Eq, 103.0, false, false},
+      {sc::Op::Ne, 101.0, true, false}, {sc::Op::Ne, 100.0, false, false}, {sc::Op::Ne, 103.0, true, true},
+      {sc::Op::Lt, 100.0, false, true}, {sc::Op::Lt, 99.0, true, true},    {sc::Op::Lt, 102.0, false, false},
+      {sc::Op::Le, 100.0, true, true},  {sc::Op::Le, 101.0, false, true},  {sc::Op::Le, 102.5, false, false},
+      {sc::Op::Gt, 100.0, false, true}, {sc::Op::Gt, 101.0, true, true},   {sc::Op::Gt, 98.0, false, false},
+      {sc::Op::Ge, 100.0, true, true},  {sc::Op::Ge, 99.0, false, true},   {sc::Op::Ge, 97.5, false, false},
   };
   for (const Row& r : rows) {
     SCOPED_TRACE(testing::Message() << "op " << static_cast<int>(r.op) << " actual " << r.actual);
@@ -441,9 +445,9 @@ TEST(dds_scenario_errors, HoldsEveryOperator) {
   sc::Expectation w;
   w.subject = "x.status";
   w.value = std::string("reached");
-  w.op = sc::Op::lt;   // only a hand-built expectation can carry this (parse() rejects it)
+  w.op = sc::Op::Lt;   // only a hand-built expectation can carry this (parse() rejects it)
   EXPECT_THROW((void)sc::holds(w, sc::Value{std::string("reached")}), std::invalid_argument);
-  w.op = sc::Op::ne;
+  w.op = sc::Op::Ne;
   EXPECT_FALSE(sc::holds(w, sc::Value{std::string("reached")}));
   EXPECT_TRUE(sc::holds(w, sc::Value{std::string("idle")}));
 }
@@ -488,14 +492,14 @@ TEST(dds_scenario_errors, EqualityDistinguishesEveryField) {
   e.t2_us = 2;
   e.target = t;
   e.subject = "x.pos";
-  e.op = sc::Op::le;
+  e.op = sc::Op::Le;
   e.value = q;
   e.tol = q;
   e.line = 9;
   const std::vector<void (*)(sc::Expectation&)> expectation_edits{
       [](sc::Expectation& x) { x.when = sc::When::at; },    [](sc::Expectation& x) { x.t_us = 0; },
       [](sc::Expectation& x) { x.t2_us = 3; },             [](sc::Expectation& x) { x.target.all = true; },
-      [](sc::Expectation& x) { x.subject = "y.pos"; },     [](sc::Expectation& x) { x.op = sc::Op::lt; },
+      [](sc::Expectation& x) { x.subject = "y.pos"; },     [](sc::Expectation& x) { x.op = sc::Op::Lt; },
       [](sc::Expectation& x) { x.value = std::string("reached"); },
       [](sc::Expectation& x) { x.tol.reset(); },           [](sc::Expectation& x) { x.line = 10; },
   };

@@ -98,7 +98,7 @@ TEST(dds_scenario, UnitsAreCanonical) {
   ASSERT_EQ(s.expectations.size(), 4U);
   EXPECT_EQ(s.expectations[0].tol->value, 1.0);
   EXPECT_EQ(s.expectations[1].when, sc::When::always);
-  EXPECT_EQ(s.expectations[1].op, sc::Op::le);
+  EXPECT_EQ(s.expectations[1].op, sc::Op::Le);
   EXPECT_EQ(std::get<std::string>(s.expectations[2].value), "+");
   EXPECT_EQ(s.expectations[2].t2_us, 2'000'000);
   EXPECT_FALSE(s.expectations[3].target.all);
@@ -124,7 +124,8 @@ TEST(dds_scenario, ErrorsNameTheLineAndTheProblem) {
   EXPECT_EQ(error_of(kHead + "fault drop 150 %\n"), "t.scn:3: fault rate above 100 %");
   EXPECT_EQ(error_of(kHead + "at 1 s jog x +\nboards 4\n"), "t.scn:4: 'boards' must come before actions and expectations");
   EXPECT_EQ(error_of(kHead + "title \"open\n"), "t.scn:3: unterminated string");
-  EXPECT_EQ(error_of(kHead + "at 1 s jog x + fast extra\n"), "t.scn:3: unexpected 'extra'");
+  // A word left over: the shared kit's message (sim/scenario_text.hpp), the word and where.
+  EXPECT_EQ(error_of(kHead + "at 1 s jog x + fast extra\n"), "t.scn:3: unexpected 'extra' at the end of the line");
   EXPECT_EQ(error_of(kHead + "expect at 1 s x.pos == 2 mm tol 1 mm/s\n"),
             "t.scn:3: tolerance: expected a length (um, mm, ...), got a speed (um/s, mm/s, ...)");
 }
@@ -228,7 +229,7 @@ RC_GTEST_PROP(dds_scenario, PrintParseIsIdentity, ()) {
     if (e.subject == "x.status") {
       e.value = std::string("reached");
     } else {
-      e.op = *rc::gen::element(sc::Op::eq, sc::Op::ne, sc::Op::lt, sc::Op::le, sc::Op::gt, sc::Op::ge);
+      e.op = *rc::gen::element(sc::Op::Eq, sc::Op::Ne, sc::Op::Lt, sc::Op::Le, sc::Op::Gt, sc::Op::Ge);
       e.value = sc::Quantity{static_cast<double>(*rc::gen::inRange(0, 1000000)) / 8.0, dim};
       if (*rc::gen::arbitrary<bool>()) e.tol = sc::Quantity{0.5, dim};
     }

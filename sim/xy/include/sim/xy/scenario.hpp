@@ -6,29 +6,24 @@
 // dimension of its subject; the simulated PC gives the semantics. All quantities are stored in
 // canonical units: um, um/s, um/s2, us, mV, mA, mdegC, mdeg, % (percent) or plain numbers.
 // to_text() prints the canonical form; parse(to_text(s)) == s.
+//
+// The language is read on the shared kit (sim/scenario_text.hpp): its words, strings and
+// comments, its comparisons (Op) and its errors (ParseError, naming file:line) are the kit's.
 #pragma once
 
 #include <cstdint>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
+#include "sim/scenario_text.hpp"
+
 namespace ap::sim::xy::scenario {
 
-class ParseError : public std::runtime_error {
- public:
-  ParseError(std::string file, int line, const std::string& what)
-      : std::runtime_error(file + ":" + std::to_string(line) + ": " + what), file_(std::move(file)), line_(line) {}
-  [[nodiscard]] int line() const { return line_; }
-  [[nodiscard]] const std::string& file() const { return file_; }
-
- private:
-  std::string file_;
-  int line_;
-};
+using text::Op;
+using text::ParseError;
 
 enum class Dim : std::uint8_t { none, length, speed, accel, time, voltage, current, temperature, angle, ratio };
 
@@ -88,7 +83,6 @@ struct Action {
 };
 
 enum class When : std::uint8_t { at, always, between, by, end };
-enum class Op : std::uint8_t { eq, ne, lt, le, gt, ge };
 
 struct Expectation {
   When when = When::at;
@@ -96,7 +90,7 @@ struct Expectation {
   std::int64_t t2_us = 0;   // between: to
   Target target;
   std::string subject;      // e.g. "x.pos", "board.state", "tmc.x.IRUN", "sub.battery", "gaps"
-  Op op = Op::eq;
+  Op op = Op::Eq;
   Value value;
   std::optional<Quantity> tol;
   int line = 0;
