@@ -396,6 +396,21 @@ TEST(dds_scenario_errors, FaultWindowAndJitterRoundTrip) {
   EXPECT_EQ(round_trip(s), without_lines(s)) << text;
 }
 
+// The printer writes any finite quantity in full: the largest and the smallest normal doubles
+// read back unchanged (a fixed notation of 1e308 is 309 digits long).
+TEST(dds_scenario_errors, ExtremeQuantitiesRoundTrip) {
+  const auto s = sc::parse(kHead + "board temperature -1.7e308 mdegC\nboard param lead 2.2250738585072014e-308 um\n"
+                                   "at 1 s battery 1e70 V\nexpect end x.pos < 1e-300 um tol 1e300 um\n",
+                           "t.scn");
+  ASSERT_EQ(s.setup.size(), 2U);
+  EXPECT_EQ(s.setup[0].amount->value, -1.7e308);
+  EXPECT_EQ(s.setup[1].amount->value, 2.2250738585072014e-308);
+  EXPECT_EQ(s.actions[0].amount->value, 1e70 * 1e3);  // V to mV
+  const std::string text = sc::to_text(s);
+  EXPECT_NE(text.find("board temperature -16999999999999999"), std::string::npos) << text;  // 309 digits
+  EXPECT_EQ(round_trip(s), without_lines(s)) << text;
+}
+
 TEST(dds_scenario_errors, UnitNames) {
   EXPECT_EQ(sc::unit_name(sc::Dim::none), "");
   EXPECT_EQ(sc::unit_name(sc::Dim::length), "um");

@@ -13,8 +13,10 @@
 namespace ap::sim::xy::scenario {
 namespace {
 
+// The shortest fixed notation that reads back as v; a double needs up to ~330 characters so
+// (1e308, 5e-324), and a buffer that cannot hold it would print whatever it held.
 std::string fmt_double(double v) {
-  char buf[64];
+  char buf[512];
   const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
   return std::string(buf, r.ptr);
 }
