@@ -9,7 +9,8 @@
 #       once installed. Each target also gets the alias axisproof::<target> here, so a profile's
 #       CMake lists may use either name in this tree and outside it.
 #   ap_install_package()
-#       At the end of the top CMakeLists.txt: the package itself (<libdir>/cmake/axisproof:
+#       At the end of the top CMakeLists.txt: the target ap_package (builds what is installed)
+#       and the package itself (<libdir>/cmake/axisproof:
 #       axisproofConfig.cmake, its version, the exported targets, the CMake modules the
 #       profiles' lists call, what this build was configured with) and the kit files
 #       (share/axisproof: the replay driver, the CLI's process plumbing, the heap check, the DDS
@@ -107,6 +108,16 @@ function(ap_install_package)
   if(AP_MCU_ONLY)
     return()
   endif()
+  # `cmake --build <build> --target ap_package`: only what `cmake --install` copies, for a
+  # harness built to be installed rather than tested (docs/profiles.md "Your own firmware").
+  get_property(_exported GLOBAL PROPERTY AP_EXPORTED_TARGETS)
+  add_custom_target(ap_package)
+  foreach(_t IN LISTS _exported)
+    get_target_property(_type ${_t} TYPE)
+    if(NOT _type STREQUAL "INTERFACE_LIBRARY")
+      add_dependencies(ap_package ${_t})
+    endif()
+  endforeach()
   set(_gen ${CMAKE_BINARY_DIR}/package)
   _ap_write_build_info(${_gen}/axisproofBuildInfo.cmake)
   get_property(AP_EXPORTED_TARGETS GLOBAL PROPERTY AP_EXPORTED_TARGETS)
