@@ -183,11 +183,15 @@ FuzzStats fuzz_one(const FuzzTarget& t, const FuzzOptions& o) {
     }
   }
 
-  // fuzz/<group>/<target>.options: OSS-Fuzz's format ([libfuzzer] then key = value lines),
-  // passed as -key=value; ClusterFuzzLite reads the same file (.clusterfuzzlite/build.sh).
+  // <data>/<group>/<target>.options (beside the target's sources; <data>/<target>.options when
+  // the target's folder is the profile's fuzz folder itself): OSS-Fuzz's format ([libfuzzer]
+  // then key = value lines), passed as -key=value; ClusterFuzzLite reads the same file
+  // (.clusterfuzzlite/build.sh).
   std::string extra;
   {
-    std::ifstream opt(src / "fuzz" / t.group / (t.name + ".options"));
+    fs::path options = fs::path(t.data) / t.group / (t.name + ".options");
+    if (!fs::exists(options)) options = fs::path(t.data) / (t.name + ".options");
+    std::ifstream opt(options);
     std::string line;
     bool in_libfuzzer = false;
     while (std::getline(opt, line)) {

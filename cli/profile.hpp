@@ -58,19 +58,19 @@ struct Profile {
   // Its wire codec (frame decode/encode/doc). decode_* print one line per frame or problem
   // and return true when everything decoded. A part a profile has not brought yet is
   // nullptr (or empty); the commands that need it say so and fail.
-  bool (*decode_frames)(const std::vector<std::string>& frames);  // nullptr: no wire protocol
-  bool (*decode_stream)(const std::string& capture);
-  int (*encode)(const std::vector<std::string>& tokens);  // nullptr: the profile has none
-  void (*doc)();                                          // nullptr: the profile has none
+  bool (*decode_frames)(const std::vector<std::string>& frames) = nullptr;  // nullptr: no wire protocol
+  bool (*decode_stream)(const std::string& capture) = nullptr;
+  int (*encode)(const std::vector<std::string>& tokens) = nullptr;  // nullptr: the profile has none
+  void (*doc)() = nullptr;                                          // nullptr: the profile has none
 
   // End to end: its simulated board behind the DDS bus (its bundled scenarios are in
   // scenarios/<name>).
-  int (*sim_run)(const SimRunArgs&);
-  int (*sim_board)(const SimBoardArgs&);
+  int (*sim_run)(const SimRunArgs&) = nullptr;
+  int (*sim_board)(const SimBoardArgs&) = nullptr;
 
   // Proofs: its obligations, and the tests (a ctest -E regex) that prove exactly those
   // obligations once more, module by module; the gate's proofs stage stands for them.
-  std::vector<model::smt::Obligation> (*obligations)();
+  std::vector<model::smt::Obligation> (*obligations)() = nullptr;
   std::string_view registry_tests;
 
   // The scenarios the gate's firmware (QEMU) stage runs on the profile's bootable image

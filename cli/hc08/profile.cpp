@@ -48,17 +48,13 @@ int sim_run(const SimRunArgs& a) {
 
 // Its adapters; the declaration (profiles/hc08.cmake) fills in the rest of its entry.
 Profile ap_profile_hc08() {
-  return Profile{
-      .decode_frames = nullptr,
-      .decode_stream = nullptr,
-      .encode = nullptr,
-      .doc = nullptr,
-      .sim_run = &profile_hc08::sim_run,
-      .sim_board = &profile_hc08::sim_board,
-      .obligations = &model::smt::hc08_obligations,
-      .registry_tests = "^Hc08Proofs\\.EveryObligationIsProved$",
-      .qemu_scenarios = {},  // no bootable image yet (docs/hc08.md "MCU")
-  };
+  // No wire protocol (the unit has no PC link), no bootable image yet (docs/hc08.md "MCU").
+  Profile p;
+  p.sim_run = &profile_hc08::sim_run;
+  p.sim_board = &profile_hc08::sim_board;
+  p.obligations = &model::smt::hc08_obligations;
+  p.registry_tests = "^Hc08Proofs\\.EveryObligationIsProved$";
+  return p;
 }
 
 }  // namespace ap::cli

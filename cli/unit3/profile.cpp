@@ -136,18 +136,15 @@ int sim_run(const SimRunArgs& a) {
 
 // Its adapters; the declaration (profiles/unit3.cmake) fills in the rest of its entry.
 Profile ap_profile_unit3() {
-  return Profile{
-      .decode_frames = &profile_unit3::decode_frames,
-      .decode_stream = &profile_unit3::decode_stream,
-      .encode = nullptr,
-      .doc = nullptr,
-      .sim_run = &profile_unit3::sim_run,
-      .sim_board = &profile_unit3::sim_board,
-      .obligations = &model::smt::unit3_obligations,
-      .registry_tests = "^Unit3Proofs\\.EveryObligationIsProved$",
-      // Cross-built for the Cortex-M4 and held to the ATmega2560's budget (docs/unit3.md "MCU").
-      .qemu_scenarios = {},  // no bootable image yet (docs/unit3.md "MCU")
-  };
+  // No frame encoder or protocol page of its own; no bootable image yet (docs/unit3.md "MCU").
+  Profile p;
+  p.decode_frames = &profile_unit3::decode_frames;
+  p.decode_stream = &profile_unit3::decode_stream;
+  p.sim_run = &profile_unit3::sim_run;
+  p.sim_board = &profile_unit3::sim_board;
+  p.obligations = &model::smt::unit3_obligations;
+  p.registry_tests = "^Unit3Proofs\\.EveryObligationIsProved$";
+  return p;
 }
 
 }  // namespace ap::cli

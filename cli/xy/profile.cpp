@@ -202,26 +202,27 @@ int sim_run(const SimRunArgs& a) {
 
 // Its adapters; the declaration (profiles/xy.cmake) fills in the rest of its entry.
 Profile ap_profile_xy() {
-  return Profile{
-      .decode_frames = &profile_xy::decode_frames,
-      .decode_stream = &profile_xy::decode_stream,
-      .encode = &profile_xy::encode,
-      .doc = &profile_xy::doc,
-      .sim_run = &profile_xy::sim_run,
-      .sim_board = &profile_xy::sim_board,
-      .obligations = &model::smt::xy_obligations,
-      .registry_tests = "^(tmc2130_proof\\.every_field_obligation_is_proved|smt_proof\\.(axis|timer|storage)_obligations_proved|(Interp|Scurve)Proof\\.EveryObligationIsProved)$",
-      // docs/qemu.md "The gate stage": an absolute move, the BLE pins and the LED, the button's
-      // shutdown and the KillSwitch, a reversal, an
-      // endstop, a link loss, a parameter save across a reboot, the IHOLD_IRUN shadow register,
-      // and the I2C sensors.
-      .qemu_scenarios = {"absolute_20mm", "ble_led", "shutdown_button", "manual_reversal", "endstop_hit", "link_loss_jog", "accel_save_reboot", "ihold_irun",
-                         "sensors"},
-      .add_commands = [](CLI::App& app) {
-        add_regs(app);
-        add_gcode(app);
-      },
+  Profile p;
+  p.decode_frames = &profile_xy::decode_frames;
+  p.decode_stream = &profile_xy::decode_stream;
+  p.encode = &profile_xy::encode;
+  p.doc = &profile_xy::doc;
+  p.sim_run = &profile_xy::sim_run;
+  p.sim_board = &profile_xy::sim_board;
+  p.obligations = &model::smt::xy_obligations;
+  p.registry_tests =
+      "^(tmc2130_proof\\.every_field_obligation_is_proved|smt_proof\\.(axis|timer|storage)_obligations_proved|(Interp|Scurve)"
+      "Proof\\.EveryObligationIsProved)$";
+  // docs/qemu.md "The gate stage": an absolute move, the BLE pins and the LED, the button's
+  // shutdown and the KillSwitch, a reversal, an endstop, a link loss, a parameter save across a
+  // reboot, the IHOLD_IRUN shadow register, and the I2C sensors.
+  p.qemu_scenarios = {"absolute_20mm",  "ble_led",           "shutdown_button", "manual_reversal", "endstop_hit",
+                      "link_loss_jog",  "accel_save_reboot", "ihold_irun",      "sensors"};
+  p.add_commands = [](CLI::App& app) {
+    add_regs(app);
+    add_gcode(app);
   };
+  return p;
 }
 
 }  // namespace ap::cli
