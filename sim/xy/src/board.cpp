@@ -256,9 +256,7 @@ xy_i2c::Status SimBoard::i2c_transfer(std::uint8_t address, std::span<const std:
 }
 
 xy_i2c::Status SimBoard::i2c_device(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx) {
-  const xy_i2c::Status s = parts_.i2c.transfer(address, tx, rx);
-  parts_.i2c.clear_log();   // the bus's log is a test hook; a run would only grow it
-  return s;
+  return parts_.i2c.transfer(address, tx, rx);
 }
 
 model::xy_echo::Sensors SimBoard::sensors_now() const { return sensors_of(parts_); }
@@ -317,7 +315,7 @@ void SimBoard::tick() {
   parts_.drivers_tick();
   board_->tick();
   if (on_qemu()) qemu_after_tick(false);
-  for (auto& d : parts_.tmc) d.clear_log();
+  parts_.clear_logs();
   check_safety();
   // The checker gives the model the inputs the core kept (board.inputs()): they must be the
   // ones this tick's sample delivered, once per tick (docs/board.md "One cycle" step 1).

@@ -13,6 +13,7 @@
 #include "core/xy/tmc2130/fields.hpp"
 #include "protocol/xy/codec/layout.hpp"
 #include "sim/xy/board.hpp"
+#include "sim/xy/led.hpp"
 #include "sim/xy/outcome_oracle.hpp"
 #include "sim/xy/params.hpp"
 

@@ -40,6 +40,8 @@
 #include "models/xy/echo/board_checker.hpp"
 #include "models/xy/safety/board_monitor.hpp"
 #include "models/xy/mechanics/mechanics.hpp"
+#include "sim/xy/digest.hpp"
+#include "sim/xy/led.hpp"
 #include "sim/xy/qemu_image.hpp"
 #include "sim/xy/rig/parts.hpp"
 #include "sim/xy/trace.hpp"
@@ -84,15 +86,8 @@ struct QemuStats {
 enum class Ble : std::uint8_t { Shutdown, Standby, Connected, Session };
 
 // LED colours (bits 0..2 = R, G, B) and blink (bits 4..5: 0 steady, 1 slow, 2 fast), Tab. 7-4.
+// (Its words in the scenario language: led_word, sim/xy/led.hpp.)
 std::uint8_t led_code(const xy_board::Board& b);
-std::string led_word(std::uint8_t code);   // "red_fast", "blue", ...
-
-// FNV-1a 64 (offset basis, prime): a digest of a byte stream, extended byte by byte.
-inline constexpr std::uint64_t kFnvBasis = 0xcbf29ce484222325ULL;
-constexpr std::uint64_t fnv1a(std::uint64_t h, std::span<const std::uint8_t> bytes) {
-  for (const std::uint8_t b : bytes) h = (h ^ b) * 0x100000001b3ULL;
-  return h;
-}
 
 struct Violation {
   std::int64_t t_us;
