@@ -1,4 +1,6 @@
-// axisproof: the verification harness's command line.
+// axisproof: the verification harness's command line. main() is in the library ap_cli with the
+// shared commands, so a project outside the tree links it with its own profiles' adapters and
+// table (ap_add_axisproof, docs/profiles.md "Your own firmware").
 // Usage errors (unknown subcommand or option) print one line and exit 2, so scripts can
 // tell a typo from a failing gate (exit 1).
 #include "cli.hpp"
@@ -20,7 +22,7 @@ int main(int argc, char** argv) {
   ap::cli::add_sim(app);
   ap::cli::add_bench(app);
   ap::cli::add_frame(app);
-  // A profile's own commands (the XY platform's `regs` and `gcode`), from its entry.
+  // Subcommands only one profile has, from its entry (add_commands, cli/profile.hpp).
   for (const auto& p : ap::cli::profiles()) {
     if (p.add_commands != nullptr) p.add_commands(app);
   }
