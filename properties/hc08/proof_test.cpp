@@ -25,7 +25,7 @@ using ap::hc08_drive::Drive;
 TEST(Hc08Proofs, EveryObligationIsProved) {
   const auto list = smt::hc08_obligations();
   ASSERT_EQ(list.size(), 7U);
-  // A name prefix, as in smt_proof (properties/xy/smt/smt_proof_test.cpp): the hc08 proof mutants'
+  // A name prefix (AP_PROVE_ONLY, docs/proofs.md): the hc08 proof mutants'
   // Killed-by checks prove only the obligations they plant a bug under; one that names nothing
   // fails.
   const char* only = std::getenv("AP_PROVE_ONLY");

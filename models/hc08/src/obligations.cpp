@@ -37,7 +37,7 @@ z3::expr hc08_ramp_step_term(z3::context& c, const z3::expr& tmod, const z3::exp
 }
 
 // ---- Mode B's position: a mirror of core/hc08/motor/src/motor.cpp -------------------------
-// Written once over Arith (models/xy/smt/axis_kernels.hpp), like the axis kernels: Sem::Bv is
+// Written once over the proof kit's Arith (models/smt/arith.hpp): Sem::Bv is
 // the motor's int64 fields as 64-bit two's complement (what the C++ computes; the conformance
 // test evaluates it against a real Motor), Sem::Int the same text over integers, each int64
 // operation recording "the exact result fits int64" (a division "dividend >= 0, divisor > 0",

@@ -1,7 +1,7 @@
 // Scenario files of the unit3 profile's end-to-end runs (docs/unit3-sim.md "Scenario language").
 //
 // The 3-axis USB unit (seed 001) speaks its own `;` dialect over a 19200-baud line, has a
-// joystick, six endstops and six buttons; the XY language (docs/scenarios.md) names none of
+// joystick, six endstops and six buttons; the first profile's language (docs/scenarios.md) names none of
 // these, so this profile brings a small language of its own:
 //
 //   scenario NAME                      title "..."          duration 3 s

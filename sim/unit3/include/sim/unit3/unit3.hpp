@@ -5,7 +5,7 @@
 //                   ways, the joystick, endstops and buttons; every tick sampled, traced and
 //                   judged by the SafetyChecker.
 //   serve_board()   one Board behind one BoardEndpoint: answers every bus command with one echo
-//                   (lockstep, docs/dds.md). The unit's bytes travel unchanged; the XY
+//                   (lockstep, docs/dds.md). The unit's bytes travel unchanged; the bus's
 //                   telemetry of the echo is left default.
 //   run_scenario()  the PC side: a PcEndpoint stepping virtual time every 10 ms (and at every
 //                   action and expectation time), writing the scenario's bytes, sending its
