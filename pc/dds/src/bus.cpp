@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "ApBus.h"
+#include "loopback_config.hpp"
 
 namespace ap::dds {
 namespace {
@@ -183,7 +184,7 @@ std::int64_t now_ns() {
   return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
-std::string loopback_config_uri() { return std::string("file://") + AP_DDS_LOOPBACK_XML; }
+std::string loopback_config_uri() { return kLoopbackConfig; }
 
 void use_loopback_config(bool overwrite) {
   const std::string uri = loopback_config_uri();

@@ -90,7 +90,8 @@ struct EchoSample {
 // CLOCK_MONOTONIC in ns (the wall_ns fields).
 std::int64_t now_ns();
 
-// file://<source tree>/pc/dds/config/loopback.xml
+// The loopback-only configuration (pc/dds/config/loopback.xml) as Cyclone's inline XML, a
+// value for CYCLONEDDS_URI that needs no file.
 std::string loopback_config_uri();
 // Sets CYCLONEDDS_URI to loopback_config_uri() unless it is already set (overwrite = false).
 // Must run before the first participant of a domain is created in this process.
