@@ -22,6 +22,7 @@
 #include "pc/dds/bus.hpp"
 #include "profile.hpp"
 #include "protocol/xy/codec/layout.hpp"
+#include "sim/xy/board.hpp"
 #include "sim/xy/run.hpp"
 #include "sim/xy/scenario.hpp"
 

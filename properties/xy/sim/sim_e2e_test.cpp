@@ -16,6 +16,7 @@
 #include "models/waveform/vcd.hpp"
 #include "protocol/xy/codec/layout.hpp"
 #include "sim/xy/run.hpp"
+#include "sim/xy/trace.hpp"
 
 namespace fs = std::filesystem;
 namespace sc = ap::sim::xy::scenario;

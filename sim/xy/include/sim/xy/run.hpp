@@ -25,9 +25,13 @@
 #include "sim/xy/scenario.hpp"
 #include "sim/xy/verdict.hpp"
 #include "pc/xy/client/client.hpp"
-#include "sim/xy/board.hpp"
 
 namespace ap::sim::xy {
+
+// The board side's own types (sim/xy/board.hpp), by name only: the users of a run see nothing
+// of the board.
+struct BoardOptions;
+class SimBoard;
 
 // Runs one scenario; throws ap::dds::Error / std::runtime_error on a bus failure.
 RunResult run_scenario(const scenario::Scenario& s, const RunOptions& opt);
