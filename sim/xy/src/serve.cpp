@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/xy/board.hpp"
 #include "sim/xy/run.hpp"
 #include "sim/serve_loop.hpp"
 
