@@ -127,7 +127,8 @@ void SimBoard::sample(void* ctx, xy_board::Inputs& in) {
 void SimBoard::motor(void* ctx, xy_board::Axis ax, const xy_board::MotorOutput& o) {
   auto* s = static_cast<SimBoard*>(ctx);
   const auto a = static_cast<std::size_t>(ax);
-  // On the QEMU target the image's outputs move the carriage; the mirror's must be the same.
+  // On the QEMU target the mirror's output must be the image's; where it is not, the image's
+  // moves the carriage.
   s->motor_effect(a, s->on_qemu() ? s->mirror_motor(a, o) : o);
 }
 

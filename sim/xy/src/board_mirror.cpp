@@ -71,19 +71,20 @@ void SimBoard::qemu_after_tick(bool boot) {
 }
 
 xy_board::MotorOutput SimBoard::mirror_motor(std::size_t a, const xy_board::MotorOutput& o) {
+  // The same output (the timer's PSC and ARR those of the host core's rate) moves the carriage
+  // as the host core's, its exact rate kept; a different one moves it as the image drives it.
   const ImageMotor& m = image_motor_[a];
   const bool enable = image_pin_low(a == 0 ? 0x40U : 0x80U);
   const auto t = xy_axis::step_timer(o.step_hz);
   const bool running = o.enable && o.steps > 0 && t.has_value();
   const bool same = enable == o.enable && m.dir == (o.dir > 0) && m.armed &&
                     (running ? (m.steps == o.steps && m.psc == t->psc && m.arr == t->arr) : m.steps == 0);
-  if (!same) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf, "axis %c: image ENA %d DIR %d steps %d PSC %u ARR %u, host core ENA %d DIR %d steps %d at %u Hz",
-                  a == 0 ? 'X' : 'Y', enable ? 1 : 0, m.dir ? 1 : 0, m.steps, m.psc, m.arr, o.enable ? 1 : 0,
-                  o.dir > 0 ? 1 : 0, o.steps, o.step_hz);
-    qemu_fail(buf);
-  }
+  if (same) return o;
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "axis %c: image ENA %d DIR %d steps %d PSC %u ARR %u, host core ENA %d DIR %d steps %d at %u Hz",
+                a == 0 ? 'X' : 'Y', enable ? 1 : 0, m.dir ? 1 : 0, m.steps, m.psc, m.arr, o.enable ? 1 : 0,
+                o.dir > 0 ? 1 : 0, o.steps, o.step_hz);
+  qemu_fail(buf);
   xy_board::MotorOutput img;
   img.enable = enable;
   img.dir = m.dir ? std::int8_t{1} : std::int8_t{-1};

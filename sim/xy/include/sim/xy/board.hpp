@@ -233,9 +233,9 @@ class SimBoard {
   void qemu_fail(const std::string& what);
   bool replay(std::uint8_t dev, std::span<const std::uint8_t> mosi, std::span<std::uint8_t> miso);
   xy_i2c::Status replay_i2c(std::uint8_t address, std::span<const std::uint8_t> tx, std::span<std::uint8_t> rx);
-  // The host core's outputs of a tick against the image's: the image's motor output (which
-  // moves the carriage), its TX bytes not yet matched (which go out), the LED, the encoder
-  // programming, the charger enable and the KillSwitch.
+  // The host core's outputs of a tick against the image's: the motor output (the image's,
+  // where they differ, moves the carriage), the TX bytes (the image's go out), the LED, the
+  // encoder programming, the charger enable and the KillSwitch.
   xy_board::MotorOutput mirror_motor(std::size_t a, const xy_board::MotorOutput& o);
   std::span<const std::uint8_t> mirror_tx(std::span<const std::uint8_t> bytes);
   void mirror_led(xy_board::LedColour lit);
