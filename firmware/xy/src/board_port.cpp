@@ -7,7 +7,7 @@
 #include <array>
 
 #include "core/xy/axis/step_timer.hpp"
-#include "firmware/periph.hpp"
+#include "firmware/xy/periph.hpp"
 
 namespace ap::xy_fw {
 namespace {

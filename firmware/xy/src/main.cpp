@@ -5,10 +5,10 @@
 #include <cstdint>
 
 #include "core/xy/board/board.hpp"
-#include "firmware/app.hpp"
+#include "firmware/xy/app.hpp"
 #include "firmware/xy/board_port.hpp"
-#include "firmware/periph.hpp"
-#include "firmware/stack.hpp"
+#include "firmware/xy/periph.hpp"
+#include "firmware/xy/stack.hpp"
 #include "protocol/xy/cosim/wire.hpp"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "firmware/link_ring.hpp"
-#include "firmware/periph.hpp"
+#include "firmware/xy/link_ring.hpp"
+#include "firmware/xy/periph.hpp"
 #include "protocol/xy/cosim/wire.hpp"
 
 extern "C" void SysTick_Handler();

@@ -8,8 +8,8 @@
 #include <cstdint>
 
 #include "core/xy/axis/step_timer.hpp"
-#include "firmware/link_ring.hpp"
-#include "firmware/periph.hpp"
+#include "firmware/xy/link_ring.hpp"
+#include "firmware/xy/periph.hpp"
 
 extern "C" void SysTick_Handler();
 extern "C" void USART1_IRQHandler();

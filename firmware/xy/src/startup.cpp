@@ -5,9 +5,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "firmware/app.hpp"
-#include "firmware/periph.hpp"
-#include "firmware/stack.hpp"
+#include "firmware/xy/app.hpp"
+#include "firmware/xy/periph.hpp"
+#include "firmware/xy/stack.hpp"
 #include "protocol/xy/cosim/wire.hpp"
 
 extern "C" {
