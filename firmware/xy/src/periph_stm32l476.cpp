@@ -4,6 +4,8 @@
 // checked against the manual line by line; that check and ci/m4-build's link and size are all
 // this file has had. QEMU has no STM32L4 machine, so none of it has run (docs/qemu.md "The
 // STM32L476 image").
+// One file, longer than the others: it is one table in code form, the registers of each
+// peripheral in RM0351's order, read against the manual section by section.
 #include <cstddef>
 #include <cstdint>
 

@@ -1,4 +1,7 @@
 // MIRRORS core/xy/axis/src/axis.cpp and table.cpp; see include/models/xy/smt/axis_encoding.hpp. Change together.
+// One file, longer than the others: it is the encoding of one straight-line function, step()
+// with its transition table, written in the same order as the C++ so the two can be read side
+// by side (and the conformance property holds them together).
 #include "models/xy/smt/axis_encoding.hpp"
 
 #include <array>

@@ -3,6 +3,9 @@
 // (kernel results constrained only by the lemmas axis.dd.* / axis.best_fit.contract, which
 // are proved about the exact kernels in QF_NIA, and whose side conditions
 // axis.overflow.kernels proves, so the Int and bit-precise kernels agree).
+// One file, longer than the others: it is one table, the list of the axis obligations in the
+// order docs/proofs.md gives them, each entry a claim with its method and assumptions; splitting
+// it would split the list the document mirrors.
 #include "models/xy/smt/axis_obligations.hpp"
 
 #include <chrono>
