@@ -8,11 +8,6 @@
 #include "kernels.hpp"
 
 namespace ap::xy_axis {
-namespace {
-
-constexpr int64_t kDist = kDistScale;
-
-}  // namespace
 
 int64_t stop_distance_fine(int32_t v, int32_t v_start_fine, int32_t accel) {
   if (v <= v_start_fine || accel <= 0) {
@@ -24,11 +19,6 @@ int64_t stop_distance_fine(int32_t v, int32_t v_start_fine, int32_t accel) {
   const int64_t a = accel;
   const int64_t m = (vv - v_start_fine - 1) / a;
   return m * vv - (a * m) * (m + 1) / 2;
-}
-
-int64_t stop_distance_usteps(const State& s, const Config& c) {
-  const int64_t f = stop_distance_fine(s.v, c.v_start * kSpeedScale, c.accel);
-  return (f + kDist - 1) / kDist;
 }
 
 // The highest speed in [lo, hi] from which the axis can still stop before the bound, or `lo`

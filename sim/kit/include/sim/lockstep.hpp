@@ -92,7 +92,6 @@ class LockstepLink {
     return r;
   }
 
-  [[nodiscard]] std::uint64_t round_trips() const { return round_trips_; }
 
  private:
   std::string who_;

@@ -122,7 +122,6 @@ class SimBoard {
   [[nodiscard]] const xy_board::Board& core() const { return *board_; }
   [[nodiscard]] Ble ble() const { return ble_; }
   [[nodiscard]] std::uint8_t led() const;
-  [[nodiscard]] double carriage_um(std::size_t a) const { return carriage_um_[a]; }
   [[nodiscard]] const std::vector<Violation>& violations() const { return violations_; }
   // Lost-step risks per axis from the mechanics model over all STEP edges so far.
   [[nodiscard]] std::size_t lost_step_risks(std::size_t a);
@@ -131,12 +130,10 @@ class SimBoard {
   // disagreements found so far (at most 20 kept), how many there were and how many echoes
   // were compared. A fresh checker with fresh boot facts follows every boot (docs/sim.md).
   [[nodiscard]] const std::vector<std::string>& echo_disagreements() const { return echo_bad_; }
-  [[nodiscard]] std::uint64_t echo_disagreement_count() const { return echo_bad_count_; }
   [[nodiscard]] std::uint64_t echoes_checked() const { return echoes_checked_; }
   // Every echo the core sent on TX (all boots): count and FNV-1a 64 digest of the bytes in
   // order, for the PC's check that the bus delivered exactly these (probe `echo_sent`).
   [[nodiscard]] std::uint64_t echoes_sent() const { return echo_digests_.size(); }
-  [[nodiscard]] const QemuStats& qemu_stats() const { return qemu_stats_; }
 
  private:
   // A board tick in ns, the unit of the STEP edges and the waveforms' timestamps.

@@ -150,7 +150,4 @@ struct StepResult {
 // Ranges: v, v_start_fine <= 1e9, accel >= 1  ->  result <= 5e17 < 2^63.
 [[nodiscard]] int64_t stop_distance_fine(int32_t v, int32_t v_start_fine, int32_t accel);
 
-// DD in whole usteps (rounded up), for status and tests.
-[[nodiscard]] int64_t stop_distance_usteps(const State& s, const Config& c);
-
 }  // namespace ap::xy_axis

@@ -113,8 +113,6 @@ class Executor {
   [[nodiscard]] Point queue_end() const;
   // The running chain's exact kinematics (1/1000 moves per s, s^2, s^3), for traces.
   [[nodiscard]] xy_scurve::Kinematics kinematics() const;
-  [[nodiscard]] std::uint32_t chain_moves() const { return chain_moves_; }
-  [[nodiscard]] std::uint32_t moves_done() const { return done_; }
   [[nodiscard]] const xy_scurve::Plan& plan() const { return plan_; }
   // The profile's segment 0..6 (7 at rest): accelerating 0-2, cruising 3, decelerating 4-6.
   [[nodiscard]] std::uint8_t profile_segment() const { return prof_.seg; }

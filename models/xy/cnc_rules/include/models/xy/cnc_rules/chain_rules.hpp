@@ -138,8 +138,6 @@ class ChainChecker {
   [[nodiscard]] std::uint64_t first_motion_tick() const { return first_motion_; }  // ~0: none
   [[nodiscard]] bool path_end_sent() const { return end_sent_; }
   [[nodiscard]] std::uint64_t path_end_tick() const { return end_tick_; }
-  [[nodiscard]] std::uint64_t longest_wait_for_space() const { return longest_wait_; }
-  [[nodiscard]] double max_centripetal_over_a() const { return max_centripetal_; }
   [[nodiscard]] double max_arc_speed_over_cap() const { return max_arc_ratio_; }
   [[nodiscard]] std::size_t rests() const { return rests_; }
 

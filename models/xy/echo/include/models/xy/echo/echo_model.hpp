@@ -174,17 +174,11 @@ class EchoModel {
   // motion against the model (see violations()).
   std::span<const Expected> end_tick(const Motion& motion);
 
-  // A hardware fault the caller caused (FRAM or driver SPI): the model cannot see hardware.
-  void hardware_fault(std::int32_t code) { fault_ = code; }
-
   // Observed motion the model forbids (an axis that starts with no accepted motion command,
   // or moves while blocked once stopped). Cleared by take_violations().
   std::vector<std::string> take_violations();
 
   // Observers for tests.
-  Activity activity(std::size_t a) const { return ax_[a].act; }
-  // The model's view of the path: a segment accepted and the path not yet seen at rest.
-  bool path_running() const { return path_.running; }
   Ended ended(std::size_t a) const { return ax_[a].ended; }
   bool blocked() const { return block_ != xy_codec::EchoStatus::Idle; }
   // This tick so far: frame events answered, and whether a new frame was taken (the board
