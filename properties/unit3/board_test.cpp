@@ -34,7 +34,7 @@ struct Rig {
     for (const char c : s) unit.receive(static_cast<std::uint8_t>(c));
     drain();
   }
-  void drain() { rx += ap::unit3_test::take_all(unit); }
+  void drain() { rx += ap::sim::unit3::take_all(unit); }
   void run(int ms) {
     for (int i = 0; i < ms; ++i) {
       unit.tick(in);
@@ -53,7 +53,7 @@ struct Rig {
     for (int i = 0; i < max_ms && running(); ++i) run(1);
   }
   // The replies, split after each ';'.
-  std::vector<std::string> replies() const { return ap::unit3_test::split_replies(rx); }
+  std::vector<std::string> replies() const { return ap::sim::unit3::split_replies(rx); }
   std::string last_report(char axis) const {
     std::string last;
     for (const auto& r : replies()) {

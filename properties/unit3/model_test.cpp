@@ -22,7 +22,7 @@ namespace {
 
 namespace u = ap::unit3_board;
 using ap::model::unit3::PcView;
-using ap::unit3_test::split_replies;
+using ap::sim::unit3::split_replies;
 
 struct Sut {
   std::array<std::uint8_t, 8> eeprom{};
@@ -33,7 +33,7 @@ struct Sut {
     eeprom.fill(0xFF);
     unit = std::make_unique<u::Unit>(eeprom);
   }
-  std::string take() { return ap::unit3_test::take_all(*unit); }
+  std::string take() { return ap::sim::unit3::take_all(*unit); }
 };
 
 std::string good_line() {

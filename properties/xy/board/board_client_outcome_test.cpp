@@ -31,7 +31,7 @@
 namespace {
 
 namespace em = ap::model::xy_echo;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 using C = ap::xy_codec::CommandId;
 using Part = ap::xy_client::Part;
 
@@ -122,7 +122,7 @@ struct Run {
     rig.in.encoder[0] = {25, 0, 1};  // homed at 50 mm (eq. 7-2, 2 mm lead)
     rig.in.encoder[1] = {25, 0, 1};
     rig.boot();
-    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::xy_board::test::boot_facts_of(rig));
+    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::sim::xy::boot_facts_of(rig));
   }
   static ap::xy_client::Config config() {
     ap::xy_client::Config c;
@@ -143,7 +143,7 @@ struct Run {
     const std::size_t before = rig.tx.size();
     rig.tick();
     const std::span<const em::EchoBytes> sent(rig.tx.data() + before, rig.tx.size() - before);
-    for (auto& m : checker->after_tick(sent, ap::xy_board::test::sensors_of(rig))) note("echo model: " + m);
+    for (auto& m : checker->after_tick(sent, ap::sim::xy::sensors_of(rig))) note("echo model: " + m);
     if (const auto& f = checker->model().fate_this_tick()) fates[f->frame.seq] = *f;
 
     for (const auto& e : sent) up.push(now_ms, std::string(e.begin(), e.end()));

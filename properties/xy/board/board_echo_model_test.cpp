@@ -22,7 +22,7 @@
 
 using namespace ap;
 using namespace ap::xy_board;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 using xy_codec::CommandId;
 using xy_codec::EchoStatus;
 namespace em = ap::model::xy_echo;
@@ -206,7 +206,7 @@ struct Bench {
       rig.in.encoder[1] = {50, 8192, 1};
     }
     rig.boot();
-    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::xy_board::test::boot_facts_of(rig));
+    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::sim::xy::boot_facts_of(rig));
   }
 
   void rx(const Bytes& b) {
@@ -219,7 +219,7 @@ struct Bench {
     rig.tick();
     const std::span<const em::EchoBytes> sent(rig.tx.data() + before, rig.tx.size() - before);
     echoes_checked += sent.size();
-    for (auto& m : checker->after_tick(sent, ap::xy_board::test::sensors_of(rig))) {
+    for (auto& m : checker->after_tick(sent, ap::sim::xy::sensors_of(rig))) {
       if (bad.size() < 8) bad.push_back(m);
     }
   }

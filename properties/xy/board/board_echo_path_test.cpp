@@ -23,7 +23,7 @@
 #include "protocol/xy/codec/statuses.hpp"
 
 using namespace ap;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 using xy_codec::CommandId;
 using xy_codec::EchoStatus;
 namespace em = ap::model::xy_echo;
@@ -45,7 +45,7 @@ struct PathBench {
       rig.in.encoder[1] = {50, 8192, 1};  // 50.5 turns = 101 000 um
     }
     rig.boot();
-    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::xy_board::test::boot_facts_of(rig));
+    checker = std::make_unique<em::BoardChecker>(*rig.board, ap::sim::xy::boot_facts_of(rig));
   }
 
   // One tick, its echoes checked by the model (or replaced by `forge` to test the check).
@@ -60,7 +60,7 @@ struct PathBench {
       (void)xy_frame::format_echo(e, sent.back());
     }
     checked += sent.size();
-    for (auto& m : checker->after_tick(sent, ap::xy_board::test::sensors_of(rig))) bad.push_back(m);
+    for (auto& m : checker->after_tick(sent, ap::sim::xy::sensors_of(rig))) bad.push_back(m);
   }
   void ticks(int n) {
     for (int i = 0; i < n; ++i) tick();

@@ -16,7 +16,7 @@
 
 using namespace ap;
 using namespace ap::xy_board;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 using C = xy_codec::CommandId;
 using S = xy_codec::EchoStatus;
 namespace chip = ap::xy_tmc2130;

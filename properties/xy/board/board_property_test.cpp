@@ -12,7 +12,7 @@
 
 using namespace ap;
 using namespace ap::xy_board;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 
 namespace {
 

@@ -25,7 +25,7 @@
 
 using namespace ap;
 using namespace ap::xy_board;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 using C = xy_codec::CommandId;
 using Sub = xy_codec::SubscriberId;
 namespace sf = ap::model::xy_sensor_faults;

@@ -18,7 +18,7 @@
 
 using namespace ap;
 using namespace ap::xy_board;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 using C = xy_codec::CommandId;
 using S = xy_codec::EchoStatus;
 using Sub = xy_codec::SubscriberId;
@@ -332,7 +332,7 @@ TEST(BoardSensors, FailingSensorsNeverChangeMotion) {
 TEST(BoardSensors, TheEchoModelAgreesFromTheDeviceModels) {
   Rig r;
   r.boot();
-  model::xy_echo::BoardChecker checker(*r.board, ap::xy_board::test::boot_facts_of(r));
+  model::xy_echo::BoardChecker checker(*r.board, ap::sim::xy::boot_facts_of(r));
   std::vector<std::string> bad;
   xy_frame::SubscriberSlots s{};
   s[0] = {Sub::TemperatureMc, 0};
@@ -353,7 +353,7 @@ TEST(BoardSensors, TheEchoModelAgreesFromTheDeviceModels) {
     const std::size_t before = r.tx.size();
     r.tick();
     const std::span<const model::xy_echo::EchoBytes> sent(r.tx.data() + before, r.tx.size() - before);
-    for (auto& m : checker.after_tick(sent, ap::xy_board::test::sensors_of(r))) {
+    for (auto& m : checker.after_tick(sent, ap::sim::xy::sensors_of(r))) {
       if (bad.size() < 5) bad.push_back(m);
     }
   }

@@ -14,7 +14,7 @@ namespace {
 
 using ap::xy_board::Axis;
 using ap::xy_board::AxisEvent;
-using ap::xy_board::test::Rig;
+using ap::sim::xy::Rig;
 using C = ap::xy_codec::CommandId;
 using S = ap::xy_codec::EchoStatus;
 

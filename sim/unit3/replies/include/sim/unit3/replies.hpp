@@ -35,9 +35,3 @@ inline std::vector<std::string> split_replies(const std::string& rx, std::string
 }
 
 }  // namespace ap::sim::unit3
-
-// The names the unit3 property tests know them by (properties/unit3).
-namespace ap::unit3_test {
-using ap::sim::unit3::split_replies;
-using ap::sim::unit3::take_all;
-}  // namespace ap::unit3_test

@@ -122,8 +122,3 @@ struct Rig : BoardParts {
 };
 
 }  // namespace ap::sim::xy
-
-// The name the board's property tests know it by (properties/xy/board, properties/xy/path).
-namespace ap::xy_board::test {
-using ap::sim::xy::Rig;
-}  // namespace ap::xy_board::test

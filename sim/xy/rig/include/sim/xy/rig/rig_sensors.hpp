@@ -21,9 +21,3 @@ inline model::xy_echo::Boot boot_facts_of(const Rig& r) {
 }
 
 }  // namespace ap::sim::xy
-
-// The names the board's property tests know them by (properties/xy/board).
-namespace ap::xy_board::test {
-using ap::sim::xy::boot_facts_of;
-using ap::sim::xy::sensors_of;
-}  // namespace ap::xy_board::test
