@@ -88,21 +88,27 @@ endfunction()
 # to the profile's ROOT. A project without layer CMakeLists.txt files calls ap_add_profiles()
 # instead (cmake/AxisproofProject.cmake).
 function(ap_add_profile_dirs)
-  ap_profiles_of_this_build(_profiles)
   file(RELATIVE_PATH _layer ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  _ap_add_profile_layer(${_layer} ${CMAKE_CURRENT_BINARY_DIR})
+endfunction()
+
+# <layer>/<profile> of every profile of this build that has one, its binary folder under
+# <binary_base>/<profile> (the tree's own folders keep their usual binary folder).
+function(_ap_add_profile_layer layer binary_base)
+  ap_profiles_of_this_build(_profiles)
   foreach(_p IN LISTS _profiles)
     get_property(_root GLOBAL PROPERTY AP_PROFILE_${_p}_ROOT)
-    set(_d ${_root}/${_layer}/${_p})
+    set(_d ${_root}/${layer}/${_p})
     if(EXISTS ${_d}/CMakeLists.txt)
       set(AP_PROFILE ${_p})
       set(AP_PROFILE_DIR ${_d})
       # The top of the profile's tree (its declaration's ROOT): where its folders find each
       # other (scenarios/<name> from properties/<name>) inside this tree and outside it.
       set(AP_PROFILE_ROOT ${_root})
-      if(_root STREQUAL CMAKE_SOURCE_DIR)
+      if(_root STREQUAL CMAKE_SOURCE_DIR AND binary_base STREQUAL CMAKE_CURRENT_BINARY_DIR)
         add_subdirectory(${_d})
       else()
-        add_subdirectory(${_d} ${CMAKE_CURRENT_BINARY_DIR}/${_p})
+        add_subdirectory(${_d} ${binary_base}/${_p})
       endif()
     endif()
   endforeach()
