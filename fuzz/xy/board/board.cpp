@@ -1,6 +1,9 @@
 // The board core driven by a fuzz-decoded script of events, with the safety properties of
 // docs/motion.md asserted after every tick. Any violation aborts (a finding; the replay ctest
 // fails on it).
+// One file, longer than the others: one fuzz entry point, its script's decoder (a table of
+// ops) and its custom mutator, which libFuzzer needs in the same binary and the -O2 copies of
+// fuzz/xy/board/CMakeLists.txt compile with it.
 //
 // Script: a sequence of ops, each one byte (low nibble = op) plus arguments:
 //   0-5  an intact command frame (7 argument bytes: X id, X data (2), Y id, Y data (2),
