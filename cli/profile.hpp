@@ -111,7 +111,7 @@ void set_run_options(const SimRunArgs& a, RunOptions& o) {
   o.log = &std::cerr;
 }
 
-// The declared profiles (generated from profiles/*.cmake: <build>/profiles/profiles.cpp).
+// The declared profiles (generated from profiles/*.cmake: <build>/declared_profiles/profiles.cpp).
 const std::vector<Profile>& profiles();
 // The generated table's constructor: an adapter's entry with its declaration filled in.
 Profile declared(Profile adapter, std::string_view name, std::string_view title, std::string_view seed,

@@ -9,7 +9,7 @@
 # Its folders are not listed: they are every <layer>/<name> folder that exists (AP_LAYER_DIRS
 # below), so a profile's code is found where its name says and nowhere else. USES names the
 # shared folders its firmware builds on (coverage and the cross build take them too).
-# The declaration's output, written at the end of configuring (<build>/profiles/):
+# The declaration's output, written at the end of configuring (<build>/declared_profiles/):
 #   profiles.tsv      one line per profile: name, title, seed, mcu, size tag, default (0/1),
 #                     its folders, its coverage folders, its mutants folder (';'-separated lists)
 #   <name>.env        the same for shell scripts (ci/m4-build, ci/mutate): AP_PROFILE_* variables
@@ -138,7 +138,7 @@ function(_ap_write_profiles)
     string(APPEND _tsv "${_p}\t${_TITLE}\t${_SEED}\t${_MCU}\t${_SIZE_TAG}\t${_DEFAULT}\t${_DIRS}\t${_COVERAGE}\t${_ROOT}/ci/mutants/${_p}\n")
     string(REPLACE ";" " " _dirs_sh "${_DIRS}")
     string(REPLACE ";" " " _cov_sh "${_COVERAGE}")
-    file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/profiles/${_p}.env CONTENT
+    file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/declared_profiles/${_p}.env CONTENT
 "AP_PROFILE_NAME='${_p}'
 AP_PROFILE_MCU='${_MCU}'
 AP_PROFILE_FLASH_BUDGET=${_FLASH_BUDGET}
@@ -167,9 +167,9 @@ AP_PROFILE_COVERAGE='${_cov_sh}'
       string(APPEND _entries "    declared(ap_profile_${_p}(), \"${_p}\", ${_t}, ${_s}, ${_m}, ${_g}, ${_DEFAULT}, {${_ds}}, {${_covs}}),\n")
     endif()
   endforeach()
-  file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/profiles/profiles.tsv CONTENT "${_tsv}")
+  file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/declared_profiles/profiles.tsv CONTENT "${_tsv}")
   if(NOT AP_MCU_ONLY)
-    file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/profiles/profiles.cpp CONTENT
+    file(GENERATE OUTPUT ${CMAKE_BINARY_DIR}/declared_profiles/profiles.cpp CONTENT
 "// Generated from the profiles' declarations (cmake/AxisproofProfiles.cmake); not in the tree.
 #include \"profile.hpp\"
 

@@ -12,7 +12,7 @@
 #   ap_add_axisproof([<name>])
 #       The command line (default name axisproof): the shared commands and main() (the
 #       library ap_cli), each declared profile's adapters (ap_<profile>_cli) and the profile
-#       table generated from the declarations (<build>/profiles/profiles.cpp). The tree it works
+#       table generated from the declarations (<build>/declared_profiles/profiles.cpp). The tree it works
 #       on (scenarios, build/<preset>, out/) is the calling project's top folder.
 
 # The harness's layers in dependency order (its top CMakeLists.txt adds them so); the first six
@@ -50,7 +50,7 @@ function(ap_add_axisproof)
   if(ARGC GREATER 0)
     set(_name ${ARGV0})
   endif()
-  set(_table ${CMAKE_BINARY_DIR}/profiles/profiles.cpp)
+  set(_table ${CMAKE_BINARY_DIR}/declared_profiles/profiles.cpp)
   set_source_files_properties(${_table} PROPERTIES GENERATED TRUE SKIP_UNITY_BUILD_INCLUSION TRUE)
   add_executable(${_name} ${AP_CLI_PROCESS_SOURCE} ${_table})
   # Adapters first, then the shared commands they call back into (sim_run_main, host_boards).

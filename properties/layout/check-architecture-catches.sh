@@ -9,7 +9,7 @@ src=$1 build=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 check=$src/ci/check-architecture
 tsv=$build/targets.tsv
-[[ -f $tsv && -f $build/profiles/profiles.tsv ]] || { echo "no targets.tsv or profiles.tsv in $build: configure it"; exit 1; }
+[[ -f $tsv && -f $build/declared_profiles/profiles.tsv ]] || { echo "no targets.tsv or profiles.tsv in $build: configure it"; exit 1; }
 
 fresh() {
   cp "$src/docs/architecture.md" "$tmp/doc.md"
@@ -92,7 +92,7 @@ expect "a permission without an arrow" "the table lets core/ use protocol/, but 
 
 # One profile's library linking another's (both in core/: the layer rule allows it).
 fresh
-mapfile -t names < <(cut -f1 "$build/profiles/profiles.tsv")
+mapfile -t names < <(cut -f1 "$build/declared_profiles/profiles.tsv")
 from="" to=""
 for a in "${names[@]}"; do
   for b in "${names[@]}"; do

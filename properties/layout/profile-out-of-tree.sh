@@ -17,7 +17,7 @@ shift 4
 name=layout.profile_out_of_tree
 fail() { echo "FAIL $name: $*"; exit 1; }
 if [[ $profile == - ]]; then
-  profile=$(for env in "$build"/profiles/*.env; do
+  profile=$(for env in "$build"/declared_profiles/*.env; do
               ( # shellcheck disable=SC1090
                 source "$env"
                 n=0
@@ -26,9 +26,9 @@ if [[ $profile == - ]]; then
                 done
                 echo "$n $AP_PROFILE_NAME" )
             done | sort -k1,1n -k2,2 | awk 'NR == 1 {print $2}')
-  [[ -n $profile ]] || fail "no declared profile in $build/profiles/*.env"
+  [[ -n $profile ]] || fail "no declared profile in $build/declared_profiles/*.env"
 fi
-[[ -f $build/profiles/$profile.env ]] || fail "no $build/profiles/$profile.env (is $build a configured build of $root?)"
+[[ -f $build/declared_profiles/$profile.env ]] || fail "no $build/declared_profiles/$profile.env (is $build a configured build of $root?)"
 if [[ $scenario == - ]]; then
   first=$(find "$root/scenarios/$profile" -maxdepth 1 -name '*.scn' | sort | head -n 1)
   [[ -n $first ]] || fail "no scenarios/$profile/*.scn"
@@ -66,7 +66,7 @@ step install cmake --install "$build" --prefix "$prefix"
 
 # 2. The profile's folders and its declaration, as a firmware team's repository holds them.
 # shellcheck disable=SC1090
-source "$build/profiles/$profile.env"
+source "$build/declared_profiles/$profile.env"
 [[ -n ${AP_PROFILE_DIRS:-} ]] || fail "$profile.env names no folders"
 for d in $AP_PROFILE_DIRS; do
   mkdir -p "$proj/$(dirname "$d")"

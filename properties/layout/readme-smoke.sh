@@ -15,13 +15,13 @@ preset=$(basename "$build")   # build/<preset> (CMakePresets.json binaryDir)
 # The profile the README's commands run without --profile: the one declared DEFAULT, read from
 # the declarations' output (no profile is named here; docs/profiles.md).
 default_profile() {  # FIELD: 1 name, 2 title (profiles.tsv)
-  awk -F'\t' -v f="$1" '$6 == 1 { print $f; exit }' "$build/profiles/profiles.tsv" 2>/dev/null
+  awk -F'\t' -v f="$1" '$6 == 1 { print $f; exit }' "$build/declared_profiles/profiles.tsv" 2>/dev/null
 }
 default=$(default_profile 1)
 ere_quote() { sed 's/[][\.*^$(){}?+|/]/\\&/g' <<<"$1"; }
 
 fail() { echo "FAIL readme.$key: $*"; exit 1; }
-need_default() { [[ -n $default ]] || fail "$build/profiles/profiles.tsv declares no default profile"; }
+need_default() { [[ -n $default ]] || fail "$build/declared_profiles/profiles.tsv declares no default profile"; }
 # expect RC OUTPUT_REGEX COMMAND...: run, show the tail, check the exit status and the output.
 expect() {
   local want=$1 re=$2 rc
@@ -81,16 +81,17 @@ case $key in
       fail "$build has no libFuzzer binaries (this smoke is registered only where AP_FUZZ_BINARIES is on)"
     expect 0 'frame_parser' ./axisproof fuzz --target frame_parser --time 2 --jobs 1 --no-save --build-dir "$build" ;;
   axisproof-sim)
-    expect 0 '' ./axisproof sim run scenarios/absolute_20mm --out "$tmp/sim"
+    need_default
+    expect 0 '' ./axisproof sim run scenarios/$default/absolute_20mm --out "$tmp/sim"
     [[ -s $tmp/sim/absolute_20mm/trace.csv ]] || fail "sim run wrote no trace.csv"
     # `sim board` in another process, the PC joining it (docs/sim.md).
     domain=$((100 + RANDOM % 100))
     ./axisproof sim board --domain "$domain" --boards 1 --idle-timeout 60 >"$tmp/board.log" 2>&1 &
     board=$!
-    expect 0 '' ./axisproof sim run scenarios/absolute_20mm --domain "$domain" --join --out "$tmp/join"
+    expect 0 '' ./axisproof sim run scenarios/$default/absolute_20mm --domain "$domain" --join --out "$tmp/join"
     wait "$board" || fail "sim board exited $? ($(tail -3 "$tmp/board.log"))"
     # The same run on the default profile's Cortex-M4 image under QEMU (docs/qemu.md).
-    expect 0 'ihold_irun: PASS' ./axisproof sim run --target qemu scenarios/ihold_irun --out "$tmp/qemu"
+    expect 0 'ihold_irun: PASS' ./axisproof sim run --target qemu scenarios/$default/ihold_irun --out "$tmp/qemu"
     grep -qx 'divergences 0' "$tmp/qemu/ihold_irun/qemu.txt" || fail "the QEMU run wrote no qemu.txt or diverged" ;;
   axisproof-frame)
     # The frames docs/protocol.md prints for these commands.
