@@ -4,7 +4,7 @@
 # Usage: cli-frame.sh <path to axisproof>
 set -u
 ap=$1
-. "$(dirname "$0")/../cli-expect.sh"
+. "$(dirname "$0")/../../cli-expect.sh"
 expect 0 "encode issue example" "$ap" frame encode x=jog:+:fast y=goto:20000 sub=battery
 frame=$out
 [[ $frame == '>00002000002030200000100000000000000F98D;' ]] || { echo "FAIL encode bytes: $frame"; fail=1; }

@@ -10,7 +10,7 @@ q=""
 cleanup() { [[ -n $q ]] && kill -9 "$q" 2>/dev/null; rm -rf "$tmp"; }
 trap cleanup EXIT
 # manual_reversal: 14 s of emulated time, long enough to be killed in the middle.
-./axisproof sim run --target qemu scenarios/manual_reversal --out "$tmp/run" >"$tmp/cli.log" 2>&1 &
+./axisproof sim run --target qemu scenarios/xy/manual_reversal --out "$tmp/run" >"$tmp/cli.log" 2>&1 &
 for _ in $(seq 1 1200); do   # up to 120 s: the first run may build the m4 image
   q=$(pgrep -f -- "path=$tmp/run/.*link\.sock" | head -1 || true)
   [[ -n $q ]] && break
