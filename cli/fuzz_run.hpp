@@ -1,6 +1,6 @@
 #pragma once
 // The fuzzing engine driver shared by `axisproof fuzz` and the gate's fuzz smoke stage
-// (implemented in cmd_fuzz.cpp).
+// (implemented in cmd_fuzz.cpp, one target's run in fuzz_run.cpp).
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,5 +49,10 @@ struct FuzzStats {
 // out/fuzz/<t>/stats.txt per target. Returns the per-target stats; *ok is false when
 // something could not run (build failure, unknown target, no targets).
 std::vector<FuzzStats> run_fuzz(const FuzzOptions& options, bool* ok);
+
+namespace fuzz_engine {
+// One target's run for run_fuzz (fuzz_run.cpp): fuzzes, merges, minimises its findings.
+FuzzStats fuzz_one(const FuzzTarget& t, const FuzzOptions& o);
+}  // namespace fuzz_engine
 
 }  // namespace ap::cli
