@@ -42,6 +42,7 @@
 // gate_release_stages.cpp (gate_stages.hpp); this file keeps the command and the stage table.
 #include "cli.hpp"
 #include "gate.hpp"
+#include "gate_shard.hpp"
 #include "gate_stages.hpp"
 #include "profile.hpp"
 
@@ -93,7 +94,25 @@ void add_gate(CLI::App& app) {
   sub->add_option("--out", out_root, "Write the reports to DIR/gate and the release artifact to DIR/release (default out/)");
   sub->add_option("--fuzz-time", fuzz_seconds, "Seconds per fuzz target in the fuzz smoke stage (default 10)")
       ->check(CLI::PositiveNumber);
-  sub->final_callback([] {
+  static std::string shard;
+  static std::string times;
+  sub->add_option("--shard", shard,
+                  "Run the I-th of N balanced parts of every stage that can be split (I/N, e.g. 2/4), after the same builds; "
+                  "`axisproof gate join` merges the N results (docs/ci.md)");
+  sub->add_option("--times", times,
+                  "Balance the shards by the part times in FILE (default ci/gate-times/<profile>.tsv; every run writes "
+                  "OUT/gate/times.tsv)");
+  auto* join = add_gate_join(sub);
+  sub->final_callback([join] {
+    if (join->parsed()) return;  // `axisproof gate join` ran instead
+    if (!shard.empty()) {
+      std::string error;
+      if (!parse_shard(shard, &g_shard, &error)) {
+        std::fprintf(stderr, "axisproof gate: %s\n", error.c_str());
+        exit_status() = 2;
+        return;
+      }
+    }
     const std::string src = source_dir();
     std::error_code ec;
     g_out = out_root.empty() ? src + "/out" : fs::absolute(out_root).string();
@@ -105,6 +124,7 @@ void add_gate(CLI::App& app) {
     run.profile = std::string(g_profile->name) + " (" + std::string(g_profile->title) + ")";
     run.size_tag = std::string(g_profile->size_tag);
     run.version = AP_VERSION;
+    run.shard = shard_text();
     run.date = now_utc();
     int st = 0;
     run.git_hash = trim(run_capture("git -C " + quote(src) + " rev-parse HEAD 2>/dev/null", &st));
@@ -119,21 +139,22 @@ void add_gate(CLI::App& app) {
         {"build-dev", "build (dev)", [](gate::Run&, std::string& l) { return build_stage("dev", l, "axisproof"); }},
         {"build-asan", "build (asan)", [](gate::Run&, std::string& l) { return build_stage("asan", l); }},
         {"tests", "unit/property/proof tests",
-         [](gate::Run&, std::string& l) {
+         [](gate::Run& r, std::string& l) {
            std::error_code rm_ec;
            fs::remove_all(profile_dir(), rm_ec);  // the coverage stage reads what this and the later test stages write
            // The tests that prove the profile's whole obligation registry again (each module's
            // "every obligation is PROVED") are left to the proofs stage, which proves the same
            // list with the same solver and reports each obligation.
-           return ctest_stage("unit|property|proof", gate_dir() + "/junit-tests.xml", l, std::string(g_profile->registry_tests));
+           return ctest_stage(r, "tests", "unit|property|proof", gate_dir() + "/junit-tests.xml", l,
+                              std::string(g_profile->registry_tests));
          }},
         {"proofs", "proofs", [](gate::Run& r, std::string& l) { return proofs_stage(r, l); }},
         {"fuzz", "fuzz smoke", [](gate::Run& r, std::string& l) { return fuzz_stage(r, l); }},
-        {"e2e", "end-to-end scenarios", [](gate::Run&, std::string& l) { return e2e_stage(l); }},
+        {"e2e", "end-to-end scenarios", [](gate::Run& r, std::string& l) { return e2e_stage(r, l); }},
         {"mutation", "mutation suite", [](gate::Run& r, std::string& l) { return mutation_stage(r, l); }},
         {"coverage", "coverage", [](gate::Run& r, std::string& l) { return coverage_stage(r, l); }},
         {"m4", "cortex-m4 build", [](gate::Run& r, std::string& l) { return m4_stage(r, l); }},
-        {"bench", "benchmarks (release)", [](gate::Run&, std::string& l) { return bench_stage(l); }},
+        {"bench", "benchmarks (release)", [](gate::Run& r, std::string& l) { return bench_stage(r, l); }},
     };
     // A profile with a bootable image also boots it (docs/qemu.md); the others have no such stage.
     std::vector<Stage> all = stages;
@@ -158,7 +179,27 @@ void add_gate(CLI::App& app) {
       const double secs = seconds_since(t0);
       std::string rel;
       if (!log.empty() && fs::exists(log)) rel = fs::relative(log, src).string();
-      run.rows.push_back({s.name, o, secs, rel});
+      run.rows.push_back({s.id, s.name, o, secs, rel});
+      // After the builds, the plan of the stages that can be split: every shard lists the same
+      // parts from the same build and balances them by the same times file (gate_shard.hpp).
+      if (std::string(s.id) == "build-asan" && o.result == Result::Pass) {
+        const std::string from = times.empty() ? default_times_file() : fs::absolute(times).string();
+        const std::string known = fs::exists(from) ? from : "";
+        g_plan = make_plan(list_parts(known), known, g_shard.on() ? g_shard.count : 1);
+        if (g_shard.on()) {
+          double mine = 0, total = 0;
+          int n = 0;
+          for (const auto& p : g_plan.parts) {
+            total += p.seconds;
+            if (p.shard == g_shard.index) {
+              mine += p.seconds;
+              ++n;
+            }
+          }
+          std::printf("      shard %s: %d of %zu parts, %.0f of %.0f s by %s\n", shard_text().c_str(), n, g_plan.parts.size(), mine,
+                      total, g_plan.times_file.empty() ? "no recorded times (1 s each)" : fs::relative(g_plan.times_file, src).c_str());
+        }
+      }
       std::printf("[%zu/%zu] %s: %s (%.1f s) %s\n", i + 1, all.size(), s.name, gate::to_string(o.result), secs, o.key.c_str());
       std::fflush(stdout);
       run.pass = run.pass && o.result == Result::Pass;
@@ -175,9 +216,12 @@ void add_gate(CLI::App& app) {
       }
       std::sort(run.details.plots.begin(), run.details.plots.end());
     }
+    time_tables(run, build_dir("asan"));
     gate::print_table(run);
     gate::write_reports(run, gate_dir());
-    gate::write_manifest(run, release_dir());
+    if (!g_shard.on()) gate::write_manifest(run, release_dir());  // a shard's release is the join's
+    write_result(run, gate_dir() + "/result.json");
+    write_times(run, gate_dir() + "/times.tsv");
     const std::string shown = out_root.empty() ? "out" : g_out;
     std::printf("report: %s/gate/report.md, %s/gate/report.html; release artifact: %s/release/\n", shown.c_str(), shown.c_str(),
                 shown.c_str());

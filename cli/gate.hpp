@@ -2,6 +2,7 @@
 // The release gate's data and its report writers (cmd_gate.cpp runs the stages,
 // gate_report.cpp writes the verdict table, JUnit XML, out/gate/report.{md,html} and the
 // release manifest).
+#include <map>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@ struct Outcome {
 };
 
 struct Row {
+  std::string id;  // the stage's id (--skip), the key of its items in Run::items
   std::string stage;
   Outcome outcome;
   double seconds = 0;
@@ -32,16 +34,31 @@ struct Details {
   std::string coverage_summary;                     // "lines 95.1 %, branches 91.2 % ..."
   std::string m4_size_md;                           // out/release/m4-size.md contents
   std::vector<std::string> plots;                   // SVG paths relative to out/gate/
+  std::vector<std::vector<std::string>> build_times;  // target, steps, seconds, share: where the asan build's time went
+  std::vector<std::vector<std::string>> test_times;   // test, stage, seconds, share: the slowest tests
+};
+
+// One part of a stage that can be split over shards (a ctest test, a mutant, an obligation, a
+// fuzz target's run, a QEMU scenario): what it gave and how long it took. A shard's result
+// lists these so the join can check that every part ran exactly once, and the next run's
+// shards are balanced by these times (docs/ci.md).
+struct Item {
+  std::string name;
+  std::string result;  // the stage's own word: passed/failed, PROVED, killed by ..., SURVIVED
+  bool pass = false;
+  double seconds = 0;
 };
 
 struct Run {
   std::vector<Row> rows;
+  std::map<std::string, std::vector<Item>> items;  // stage id -> its parts, in the order they ran
   Details details;
   bool pass = false;
   double seconds = 0;
   std::string version, git_hash, date;
   std::string profile;  // the firmware profile judged (docs/profiles.md)
   std::string size_tag = "m4";  // its release libraries (out/release/<tag>/) and size table
+  std::string shard = "1/1";    // I/N of a sharded gate; "joined N" for the join's run
 };
 
 void print_table(const Run& run);

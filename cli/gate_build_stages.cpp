@@ -3,6 +3,7 @@
 // Split out of cmd_gate.cpp to keep each file of the gate readable; the stages and the gate's
 // design are described in docs/architecture.md, "The release gate" (see gate_stages.hpp).
 #include "cli.hpp"
+#include "gate_shard.hpp"
 #include "gate_stages.hpp"
 
 #include <sys/wait.h>
@@ -142,27 +143,36 @@ int count_tests(const std::string& preset, const std::string& labels, const std:
 
 std::string profile_dir() { return build_dir("asan") + "/profiles"; }
 
-// `exclude` (a ctest -E regex, or empty): tests another stage runs in the same form.
-Outcome ctest_stage(const std::string& labels, const std::string& junit, const std::string& log,
-                    const std::string& exclude) {
+// `exclude` (a ctest -E regex, or empty): tests another stage runs in the same form. `id`:
+// the stage's id, the name of its parts in the shard plan (gate_shard.hpp); a shard runs only
+// its own tests (ctest -R with their exact names).
+Outcome ctest_stage(gate::Run& run, const std::string& id, const std::string& labels, const std::string& junit,
+                    const std::string& log, const std::string& exclude) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
-  const int n = count_tests("asan", labels);
-  if (n == 0) return {Result::NotRun, "no tests labelled " + labels};
+  const std::vector<std::string> all = ctest_names(labels, exclude);
+  if (all.empty()) return {Result::NotRun, "no tests labelled " + labels};
+  const std::vector<std::string> mine = my_parts(id, all);
+  const std::string part = g_shard.on() ? " of " + std::to_string(all.size()) + " in shard " + shard_text() : "";
+  if (mine.empty()) return {Result::Pass, "0" + part};
   const std::string except = exclude.empty() ? "" : " -E " + quote(exclude);
-  const int st = run_logged("ctest --preset asan -L " + quote(labels) + " -L " + quote(profile_labels()) + except +
+  const std::string only = g_shard.on() ? " -R " + quote(exact_regex(mine)) : "";
+  std::error_code ec;
+  fs::remove(junit, ec);
+  const int st = run_logged("ctest --preset asan -L " + quote(labels) + " -L " + quote(profile_labels()) + except + only +
                                 " --no-tests=error --output-junit " + quote(junit),
                             log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
-  const std::string text = slurp(log);
-  std::smatch m;
-  std::string key = std::to_string(n) + " tests";
-  if (std::regex_search(text, m, std::regex(R"((\d+)% tests passed, (\d+) tests? failed out of (\d+))"))) {
-    key = m[3].str() + " tests, " + m[2].str() + " failed";
-  }
+  auto& items = run.items[id];
+  items = read_ctest_junit(junit);
+  const auto failed = std::count_if(items.begin(), items.end(), [](const gate::Item& i) { return !i.pass; });
+  std::string key = std::to_string(items.size()) + " tests" + part + ", " + std::to_string(failed) + " failed";
   if (!exclude.empty()) {
-    const int ran = count_tests("asan", labels, exclude);
-    key += " (" + std::to_string(n - ran) + " that re-prove the obligations left to the proofs stage)";
+    const int everything = count_tests("asan", labels);
+    key += " (" + std::to_string(everything - static_cast<int>(all.size())) + " that re-prove the obligations left to the proofs stage)";
   }
-  return {st == 0 ? Result::Pass : Result::Fail, key};
+  if (items.size() != mine.size()) {
+    return {Result::Fail, key + "; ctest ran " + std::to_string(items.size()) + " of the " + std::to_string(mine.size()) + " tests asked"};
+  }
+  return {st == 0 && failed == 0 ? Result::Pass : Result::Fail, key};
 }
 
 // Runs job(0) .. job(count - 1) on up to build_jobs() threads at once and returns when all are

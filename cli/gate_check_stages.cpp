@@ -4,8 +4,11 @@
 // docs/architecture.md, "The release gate" (see gate_stages.hpp).
 #include "cli.hpp"
 #include "fuzz_run.hpp"
+#include "gate_shard.hpp"
 #include "gate_stages.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -23,8 +26,18 @@ Outcome proofs_stage(gate::Run& run, const std::string& log) {
   if (slurp(source_dir() + "/cli/cmd_prove.cpp").find("not available yet") != std::string::npos) {
     return {Result::NotRun, "axisproof prove is still the placeholder (docs/proofs.md)"};
   }
+  // A shard proves its own obligations (--only NAME; --only also takes a prefix, so the table
+  // is read for exactly those names below).
+  std::vector<std::string> all;
+  for (const auto& o : g_profile->obligations()) all.push_back(o.name);
+  const std::vector<std::string> mine = my_parts("proofs", all);
+  if (mine.empty()) return {Result::Pass, "0 of " + std::to_string(all.size()) + " obligations in shard " + shard_text()};
+  std::string only;
+  if (g_shard.on()) {
+    for (const auto& n : mine) only += " --only " + quote(n);
+  }
   // Both cores: the obligations are dealt to build_jobs() processes (axisproof prove --jobs).
-  const int st = run_logged(quote(self_exe()) + " prove --profile " + std::string(g_profile->name) + " --jobs " +
+  const int st = run_logged(quote(self_exe()) + " prove --profile " + std::string(g_profile->name) + only + " --jobs " +
                                 std::to_string(build_jobs()),
                             log, R"(^\[\d+/\d+\])");
   const std::string text = slurp(log);
@@ -44,11 +57,23 @@ Outcome proofs_stage(gate::Run& run, const std::string& log) {
     std::string name, result, secs, method;
     row >> name >> result >> secs;
     std::getline(row, method);
+    if (std::find(mine.begin(), mine.end(), name) == mine.end()) continue;  // another shard's, matched by prefix
     run.details.proofs.push_back({name, result, secs, trim(method)});
+    double s = 0;
+    try {
+      s = std::stod(secs);
+    } catch (...) {
+    }
+    run.items["proofs"].push_back({name, result, result == "PROVED", s});
     (result == "PROVED" ? proved : other)++;
   }
-  std::string key = std::to_string(proved + other) + " obligations, " + std::to_string(proved) + " proved";
+  std::string key = std::to_string(proved + other) + " obligations" +
+                    (g_shard.on() ? " of " + std::to_string(all.size()) + " in shard " + shard_text() : "") + ", " +
+                    std::to_string(proved) + " proved";
   if (proved + other == 0) key = st == 0 ? "prove passed (no table found)" : "prove failed (see log)";
+  if (proved + other != static_cast<int>(mine.size())) {
+    return {Result::Fail, key + "; the table has " + std::to_string(proved + other) + " of the " + std::to_string(mine.size()) + " obligations asked"};
+  }
   return {st == 0 ? Result::Pass : Result::Fail, key};
 }
 
@@ -135,21 +160,37 @@ Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
   const std::vector<FuzzTarget> listed = read_fuzz_targets(build_dir("asan"), g_profile->name);
   if (listed.empty()) return {Result::NotRun, "no fuzz targets of this profile (fuzz/<group>/ with ap_add_fuzz_target)"};
-  const std::string not_cfl = " -L " + quote(profile_labels()) + " -E '^fuzz\\.clusterfuzzlite_build_sh$'";
-  int st = 0;
-  const std::string n_out = run_capture("cd " + quote(source_dir()) + " && ctest --preset asan -N -L fuzz" + not_cfl + " 2>/dev/null", &st);
-  std::smatch nm;
-  const int replays = std::regex_search(n_out, nm, std::regex(R"(Total Tests: (\d+))")) ? std::stoi(nm[1].str()) : 0;
-  st = run_logged("ctest --preset asan -L fuzz" + not_cfl + " --no-tests=error --output-junit " +
-                      quote(gate_dir() + "/junit-fuzz-replay.xml"),
-                  log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
-  if (st != 0) return {Result::Fail, "replay of corpora / regressions fails (" + std::to_string(replays) + " fuzz tests)"};
-  std::vector<FuzzTarget> runnable;
+  // The replays and the short runs are parts of the shard plan: "NAME" for a replay test,
+  // "target:T" for a short run (gate_shard.cpp).
+  const std::vector<std::string> replays_all = ctest_names("fuzz", fuzz_replay_exclude());
+  const std::vector<std::string> replays = my_parts("fuzz", replays_all);
+  std::vector<FuzzTarget> mine;
   for (const auto& t : listed) {
+    if (my_part("fuzz", "target:" + t.name)) mine.push_back(t);
+  }
+  const std::string part = g_shard.on() ? " in shard " + shard_text() : "";
+  auto& items = run.items["fuzz"];
+  if (!replays.empty()) {
+    const std::string junit = gate_dir() + "/junit-fuzz-replay.xml";
+    std::error_code ec;
+    fs::remove(junit, ec);
+    const std::string only = g_shard.on() ? " -R " + quote(exact_regex(replays)) : "";
+    const int st = run_logged("ctest --preset asan -L fuzz -L " + quote(profile_labels()) + " -E " + quote(fuzz_replay_exclude()) +
+                                  only + " --no-tests=error --output-junit " + quote(junit),
+                              log, R"(\*\*\*Failed|\(Failed\)|\*\*\*Exception|\*\*\*Timeout|tests passed)");
+    items = read_ctest_junit(junit);
+    const bool all_ran = items.size() == replays.size();
+    if (st != 0 || !all_ran) {
+      return {Result::Fail, "replay of corpora / regressions fails (" + std::to_string(replays.size()) + " fuzz tests" + part +
+                                (all_ran ? "" : "; ctest ran " + std::to_string(items.size())) + ")"};
+    }
+  }
+  std::vector<FuzzTarget> runnable;
+  for (const auto& t : mine) {
     if (t.binary != "-" && fs::exists(t.binary)) runnable.push_back(t);
   }
-  if (runnable.size() != listed.size()) {
-    return {Result::NotRun, std::to_string(replays) + " replay tests passed; build/asan has no libFuzzer binaries "
+  if (runnable.size() != mine.size()) {
+    return {Result::NotRun, std::to_string(replays.size()) + " replay tests passed; build/asan has no libFuzzer binaries "
                             "(configure it from the asan preset: AP_FUZZ_BINARIES)"};
   }
   bool ok = true;
@@ -157,21 +198,31 @@ Outcome fuzz_stage(gate::Run& run, const std::string& log) {
   long long min_rate = -1;
   std::string slowest;
   std::vector<int> status(runnable.size(), 0);
-  run_parallel(runnable.size(), [&](std::size_t i) { status[i] = fuzz_short_run(runnable[i]); });
+  std::vector<double> secs(runnable.size(), 0.0);
+  run_parallel(runnable.size(), [&](std::size_t i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    status[i] = fuzz_short_run(runnable[i]);
+    secs[i] = seconds_since(t0);
+  });
   for (std::size_t i = 0; i < runnable.size(); ++i) {
-    fuzz_collect(runnable[i], status[i], run, log, &findings, &ok, &min_rate, &slowest);
+    const int before = findings;
+    bool ran = true;
+    fuzz_collect(runnable[i], status[i], run, log, &findings, &ran, &min_rate, &slowest);
+    ok = ok && ran;
+    const bool clean = ran && findings == before;
+    items.push_back({"target:" + runnable[i].name, clean ? "no finding" : ran ? "finding" : "did not run", clean, secs[i]});
   }
-  std::string key = std::to_string(replays) + " replay tests; " + std::to_string(runnable.size()) + " targets x " +
-                    std::to_string(fuzz_seconds) + " s, " + std::to_string(findings) + " findings";
+  std::string key = std::to_string(replays.size()) + " replay tests; " + std::to_string(runnable.size()) + " targets x " +
+                    std::to_string(fuzz_seconds) + " s" + part + ", " + std::to_string(findings) + " findings";
   if (min_rate >= 0) key += ", slowest " + slowest + " " + std::to_string(min_rate) + " exec/s";
   if (!ok) return {Result::Fail, key + " (a target did not run as a fuzzer; see log)"};
   return {findings == 0 ? Result::Pass : Result::Fail, key + (findings ? " (reproducers in out/gate/fuzz/<target>/findings/)" : "")};
 }
 
-Outcome e2e_stage(const std::string& log) {
+Outcome e2e_stage(gate::Run& run, const std::string& log) {
   if (!built_ok["asan"]) return {Result::NotRun, "build (asan) failed"};
   if (count_tests("asan", "e2e") == 0) return {Result::NotRun, "no end-to-end tests (ctest label e2e) yet"};
-  return ctest_stage("e2e", gate_dir() + "/junit-e2e.xml", log);
+  return ctest_stage(run, "e2e", "e2e", gate_dir() + "/junit-e2e.xml", log);
 }
 
 }  // namespace ap::cli::gate_stages

@@ -3,9 +3,11 @@
 // each file of the gate readable; the stages are described in docs/architecture.md, "The
 // release gate", and docs/qemu.md (see gate_stages.hpp).
 #include "cli.hpp"
+#include "gate_shard.hpp"
 #include "gate_stages.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +37,9 @@ std::map<std::string, std::string> read_kv(const std::string& path) {
 
 }  // namespace
 
+Outcome m4_build(gate::Run& run, const std::string& log);
+Outcome bench_run(const std::string& log);
+
 Outcome mutation_stage(gate::Run& run, const std::string& log) {
   // The runner picks a profile's mutants by their Profile: header; asked first for the
   // profile's own, so a profile without any is NOT RUN rather than judged on the harness's.
@@ -43,6 +48,12 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
                                           std::string(g_profile->name) + " 2>/dev/null",
                                       &listed);
   if (listed != 0 || trim(own).empty()) return {Result::NotRun, "no mutants of this profile in ci/mutants/"};
+  const auto own_and_harness = [] {
+    int st = 0;
+    return run_capture("cd " + quote(source_dir()) + " && ci/mutate --list --profile " + std::string(g_profile->name) +
+                           ",harness 2>/dev/null",
+                       &st);
+  };
   std::error_code ec;
   fs::remove(source_dir() + "/out/mutate/report.tsv", ec);
   // The runner judges each mutant in build/asan only (overlay mode, ci/mutate --builds asan):
@@ -61,10 +72,29 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
       earlier_pass = false;
     }
   }
-  // The profile's mutants and the harness's own (README, bootstrap, CLI), like the tests.
-  const int st = run_logged("ci/mutate --builds asan --profile " + std::string(g_profile->name) + ",harness --jobs " +
-                                std::to_string(build_jobs()) +
-                                (earlier_pass ? " --no-wide-baseline --no-ctest-baseline" : ""),
+  // The profile's mutants and the harness's own (README, bootstrap, CLI), like the tests. A
+  // shard judges its own, named. Its earlier stages ran only its own tests, so the baseline
+  // they stand for is the union of the shards' test stages: the join's verdict is PASS only
+  // when every shard's test stages passed on this commit (docs/ci.md "Shards").
+  std::vector<std::string> all;
+  {
+    std::istringstream in(own_and_harness());
+    std::string l;
+    while (std::getline(in, l)) {
+      std::istringstream row(l);
+      std::string name;
+      if (row >> name) all.push_back(name);
+    }
+  }
+  const std::vector<std::string> mine = my_parts("mutation", all);
+  if (mine.empty()) return {Result::Pass, "0 of " + std::to_string(all.size()) + " mutants in shard " + shard_text()};
+  std::string which = " --profile " + std::string(g_profile->name) + ",harness";
+  if (g_shard.on()) {
+    which.clear();
+    for (const auto& n : mine) which += " " + quote(n);
+  }
+  const int st = run_logged("ci/mutate --builds asan --jobs " + std::to_string(build_jobs()) +
+                                (earlier_pass ? " --no-wide-baseline --no-ctest-baseline" : "") + which,
                             log,
                             R"(^\[\d+/\d+\]|^mutate: )");
   std::ifstream tsv(source_dir() + "/out/mutate/report.tsv");
@@ -79,6 +109,12 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
     while (std::getline(ss, part, '\t')) f.push_back(part);
     if (f.size() < 4) continue;
     run.details.mutants.push_back(f);
+    double secs = 0;
+    try {
+      secs = std::stod(f[3]);
+    } catch (...) {
+    }
+    run.items["mutation"].push_back({f[0], f[2], f[2].rfind("killed", 0) == 0, secs});
     ++total;
     if (f[2].rfind("killed", 0) == 0) ++killed;
     else bad.push_back(f[0] + " " + (f[2] == "SURVIVED" ? "SURVIVED" : "INVALID"));
@@ -87,19 +123,42 @@ Outcome mutation_stage(gate::Run& run, const std::string& log) {
   std::smatch m;
   if (std::regex_search(text, m, std::regex(R"(mutation suite: ([^\n]*))"))) run.details.mutation_summary = m[1].str();
   if (total == 0) return {Result::Fail, "runner failed before any mutant (baseline or build; see log)"};
-  std::string key = std::to_string(killed) + "/" + std::to_string(total) + " killed";
+  std::string key = std::to_string(killed) + "/" + std::to_string(total) + " killed" +
+                    (g_shard.on() ? " (of " + std::to_string(all.size()) + ", shard " + shard_text() + ")" : "");
   for (size_t i = 0; i < bad.size() && i < 3; ++i) key += (i ? ", " : "; ") + bad[i];
   if (bad.size() > 3) key += ", ...";
+  if (total != static_cast<int>(mine.size())) {
+    return {Result::Fail, key + "; the runner judged " + std::to_string(total) + " of the " + std::to_string(mine.size()) + " mutants asked"};
+  }
   return {st == 0 && killed == total ? Result::Pass : Result::Fail, key};
 }
 
+// A shard's tests wrote only part of the profiles: it keeps them, merged, for the join, which
+// measures the coverage of all shards' profiles together (gate_join.cpp).
+Outcome keep_profiles_for_join(const std::string& log) {
+  if (!asan_shared() || !fs::is_directory(profile_dir()) || fs::is_empty(profile_dir())) {
+    return {Result::NotRun, "no coverage profiles from this shard's tests (build/asan without AP_COVERAGE?)"};
+  }
+  const std::string out = gate_dir() + "/coverage.profdata";
+  const int st = run_logged("$(command -v llvm-profdata-14 || command -v llvm-profdata) merge -sparse " + quote(profile_dir()) +
+                                "/*.profraw -o " + quote(out),
+                            log);
+  if (st != 0) return {Result::Fail, "llvm-profdata merge of this shard's profiles failed (see log)"};
+  return {Result::Pass, "this shard's profiles merged into coverage.profdata; the join measures all shards' together"};
+}
+
 Outcome coverage_stage(gate::Run& run, const std::string& log) {
+  if (g_shard.on()) return keep_profiles_for_join(log);
+  return coverage_report(run, log, profile_dir());
+}
+
+Outcome coverage_report(gate::Run& run, const std::string& log, const std::string& profiles) {
   char thr[16];
   std::snprintf(thr, sizeof thr, "%.0f", kMinBranchCoverage);
   // The test stages of the asan build wrote the profiles; without them (an asan build without
   // coverage), ci/coverage builds the cov preset and runs the suite again.
-  const bool shared = asan_shared() && fs::is_directory(profile_dir()) && !fs::is_empty(profile_dir());
-  const std::string from = shared ? " --build-dir " + quote(build_dir("asan")) + " --profiles " + quote(profile_dir()) : "";
+  const bool shared = asan_shared() && fs::is_directory(profiles) && !fs::is_empty(profiles);
+  const std::string from = shared ? " --build-dir " + quote(build_dir("asan")) + " --profiles " + quote(profiles) : "";
   std::string sources;
   std::string measured;
   for (const auto& p : g_profile->coverage_paths) {
@@ -132,6 +191,25 @@ Outcome coverage_stage(gate::Run& run, const std::string& log) {
 }
 
 Outcome m4_stage(gate::Run& run, const std::string& log) {
+  if (!my_part("m4", "m4")) {
+    // Another shard's stage; this one builds the image only when it has QEMU scenarios to boot.
+    const std::string owner = "shard " + std::to_string(shard_of("m4", "m4")) + "/" + std::to_string(g_shard.count);
+    bool boots = false;
+    for (const auto& n : g_profile->qemu_scenarios) boots = boots || my_part("qemu", std::string(n));
+    boots = boots || my_part("qemu", "repeat:" + repeat_scenario());
+    if (!boots || g_profile->qemu_scenarios.empty()) return {Result::Pass, "in " + owner};
+    const int st = run_logged("ci/m4-build --profile " + std::string(g_profile->name) + " --out " + quote(gate_dir() + "/m4-for-qemu"), log,
+                              R"(m4-build:)");
+    return {st == 0 ? Result::Pass : Result::Fail,
+            std::string(st == 0 ? "built" : "build failed") + " for this shard's QEMU scenarios; the stage is " + owner + "'s"};
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome o = m4_build(run, log);
+  run.items["m4"].push_back({"m4", gate::to_string(o.result), o.result == Result::Pass, seconds_since(t0)});
+  return o;
+}
+
+Outcome m4_build(gate::Run& run, const std::string& log) {
   const int st = run_logged("ci/m4-build --profile " + std::string(g_profile->name) + " --out " + quote(release_dir()), log,
                             R"(^total|^flash|m4-build:)");
   const std::string table = release_dir() + "/" + std::string(g_profile->size_tag) + "-size";
@@ -161,7 +239,9 @@ Outcome m4_stage(gate::Run& run, const std::string& log) {
 // scenarios runs on the image the m4 stage built from these sources, with the host core as its
 // lockstep mirror (any difference in SPI traffic, motor outputs, TX bytes or axis positions is
 // a violation), and again on the host simulator alone: the two trace.csv must be equal byte
-// for byte. The shortest one runs on the image twice: the same scenario gives the same trace.
+// for byte. One scenario (the shortest by the recorded times, repeat_scenario()) runs on the
+// image twice: the same scenario gives the same trace. Parts of the shard plan: each scenario
+// by its name, and "repeat:NAME".
 Outcome qemu_stage(gate::Run& run, const std::string& log) {
   const bool m4_ok = std::any_of(run.rows.begin(), run.rows.end(), [](const gate::Row& r) {
     return r.stage == "cortex-m4 build" && r.outcome.result == Result::Pass;
@@ -169,6 +249,7 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
   if (!m4_ok) return {Result::NotRun, "the cortex-m4 build did not pass: no image"};
   const std::string root = gate_dir() + "/qemu";
   const std::string self = quote(self_exe());
+  const std::string profile = std::string(g_profile->name);
   const auto stats = [](const std::string& file) {
     std::map<std::string, std::string> kv;
     std::ifstream in(file);
@@ -176,28 +257,35 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
     while (in >> k >> v) kv[k] = v;
     return kv;
   };
+  const auto scn = [](const std::string& name) { return quote(scenarios_dir(*g_profile) + "/" + name + ".scn"); };
+  std::vector<std::string> names;
+  for (const auto& n : g_profile->qemu_scenarios) {
+    if (my_part("qemu", std::string(n))) names.push_back(std::string(n));
+  }
+  const std::string again_name = repeat_scenario();
+  const bool repeat = !again_name.empty() && my_part("qemu", "repeat:" + again_name);
+  if (names.empty() && !repeat) return {Result::Pass, "0 of " + std::to_string(g_profile->qemu_scenarios.size()) + " scenarios in shard " + shard_text()};
   int passed = 0;
   double emulated = 0, wall = 0;
   unsigned long stack = 0, stack_size = 0;
   std::vector<std::string> bad;
-  std::string shortest;
-  unsigned long shortest_ticks = 0;
   // Two scenarios at once (run_parallel): each run is one emulator and one mirror process
   // taking turns, about one core. Each writes its own log, appended to the stage's in order.
-  const std::vector<std::string_view>& names = g_profile->qemu_scenarios;
   std::vector<int> host_st(names.size(), 0), image_st(names.size(), 0);
+  std::vector<double> secs(names.size(), 0.0);
   run_parallel(names.size(), [&](std::size_t i) {
-    const std::string name(names[i]);
-    const std::string scn = scenarios_dir(*g_profile) + "/" + name + ".scn";
+    const std::string& name = names[i];
     const std::string own = root + "/logs/" + name + ".log";
     std::error_code rm_ec;
     fs::remove(own, rm_ec);
-    host_st[i] = run_logged(self + " sim run --profile " + std::string(g_profile->name) + " " + quote(scn) + " --out " + quote(root + "/host"), own);
-    image_st[i] = run_logged(self + " sim run --profile " + std::string(g_profile->name) + " " + quote(scn) + " --target qemu --out " + quote(root + "/qemu"), own,
+    const auto t0 = std::chrono::steady_clock::now();
+    host_st[i] = run_logged(self + " sim run --profile " + profile + " " + scn(name) + " --out " + quote(root + "/host"), own);
+    image_st[i] = run_logged(self + " sim run --profile " + profile + " " + scn(name) + " --target qemu --out " + quote(root + "/qemu"), own,
                              "^scenario ");
+    secs[i] = seconds_since(t0);
   });
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string name(names[i]);
+    const std::string& name = names[i];
     const int host = host_st[i];
     const int image = image_st[i];
     {
@@ -208,44 +296,57 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
     const bool same = slurp(root + "/host/" + name + "/trace.csv") == slurp(root + "/qemu/" + name + "/trace.csv") &&
                       !slurp(root + "/qemu/" + name + "/trace.csv").empty();
     if (kv.count("ticks") != 0) {
-      const unsigned long ticks = std::stoul(kv.at("ticks"));
       emulated += std::stod(kv.at("emulated_s"));
       wall += std::stod(kv.at("wall_s"));
       stack = std::max(stack, std::stoul(kv.at("stack_used")));
       stack_size = std::stoul(kv.at("stack_size"));
-      if (shortest.empty() || ticks < shortest_ticks) {
-        shortest = name;
-        shortest_ticks = ticks;
-      }
     }
-    if (host == 0 && image == 0 && same) {
-      ++passed;
-    } else {
-      bad.push_back(name + (image != 0 ? " FAIL on the image" : host != 0 ? " FAIL on the host" : " traces differ"));
-    }
+    const bool ok = host == 0 && image == 0 && same;
+    const std::string verdict = ok ? "passed" : image != 0 ? "FAIL on the image" : host != 0 ? "FAIL on the host" : "traces differ";
+    run.items["qemu"].push_back({name, verdict, ok, secs[i]});
+    if (ok) ++passed;
+    else bad.push_back(name + " " + verdict);
   }
   bool repeatable = false;
-  if (!shortest.empty()) {
-    const std::string scn = scenarios_dir(*g_profile) + "/" + shortest + ".scn";
-    const int again = run_logged(self + " sim run --profile " + std::string(g_profile->name) + " " + quote(scn) + " --target qemu --out " + quote(root + "/again"), log);
-    repeatable = again == 0 && slurp(root + "/again/" + shortest + "/trace.csv") == slurp(root + "/qemu/" + shortest + "/trace.csv");
-    if (!repeatable) bad.push_back(shortest + " gave another trace the second time");
+  if (repeat) {
+    // Its first image run is this shard's own, or one more run when another shard has the scenario.
+    const auto t0 = std::chrono::steady_clock::now();
+    std::string first = root + "/qemu/" + again_name + "/trace.csv";
+    int st = 0;
+    if (std::find(names.begin(), names.end(), again_name) == names.end()) {
+      st = run_logged(self + " sim run --profile " + profile + " " + scn(again_name) + " --target qemu --out " + quote(root + "/first"), log);
+      first = root + "/first/" + again_name + "/trace.csv";
+    }
+    const int again = run_logged(self + " sim run --profile " + profile + " " + scn(again_name) + " --target qemu --out " + quote(root + "/again"), log);
+    repeatable = st == 0 && again == 0 && !slurp(first).empty() && slurp(root + "/again/" + again_name + "/trace.csv") == slurp(first);
+    if (!repeatable) bad.push_back(again_name + " gave another trace the second time");
+    run.items["qemu"].push_back({"repeat:" + again_name, repeatable ? "same trace" : "another trace", repeatable, seconds_since(t0)});
   }
   const std::size_t n = g_profile->qemu_scenarios.size();
-  char buf[320];
+  char buf[400];
   std::snprintf(buf, sizeof buf,
-                "%d/%zu scenarios PASS on the image, traces equal to the host's%s; emulated %.1f s in %.1f s wall (%.2fx, "
+                "%d/%zu scenarios PASS on the image%s, traces equal to the host's%s; emulated %.1f s in %.1f s wall (%.2fx, "
                 "two runs at once); "
                 "stack high-water %lu of %lu B",
-                passed, n, repeatable ? ", repeatable" : "", emulated, wall, wall > 0 ? emulated / wall : 0.0, stack, stack_size);
+                passed, g_shard.on() ? names.size() : n, g_shard.on() ? (" (of " + std::to_string(n) + ", shard " + shard_text() + ")").c_str() : "",
+                repeat ? (", " + again_name + " repeatable").c_str() : "", emulated, wall, wall > 0 ? emulated / wall : 0.0, stack, stack_size);
   std::string key = buf;
   for (std::size_t i = 0; i < bad.size() && i < 3; ++i) key += (i ? ", " : "; ") + bad[i];
-  return {passed == static_cast<int>(n) && repeatable && n > 0 ? Result::Pass : Result::Fail, key};
+  const bool all_passed = passed == static_cast<int>(names.size());
+  return {all_passed && (repeatable || !repeat) && n > 0 ? Result::Pass : Result::Fail, key};
 }
 
 // The README's `axisproof bench` end to end (release benchmarks build, one benchmark runs): a
 // smoke of the command, not a performance check, so the rate is reported and never judged.
-Outcome bench_stage(const std::string& log) {
+Outcome bench_stage(gate::Run& run, const std::string& log) {
+  if (!my_part("bench", "bench")) return {Result::Pass, "in shard " + std::to_string(shard_of("bench", "bench")) + "/" + std::to_string(g_shard.count)};
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome o = bench_run(log);
+  run.items["bench"].push_back({"bench", gate::to_string(o.result), o.result == Result::Pass, seconds_since(t0)});
+  return o;
+}
+
+Outcome bench_run(const std::string& log) {
   const char* kBenchmark = "BM_ProtocolParseCommand";
   const int st = run_logged(quote(self_exe()) + " bench --filter '^" + kBenchmark + "$'", log, std::string("^") + kBenchmark);
   std::smatch m;

@@ -160,6 +160,15 @@ bool write_junit(const Run& run, const std::string& file) {
 }
 
 namespace {
+const char* kTimesNote =
+    "The asan build's targets by the seconds their steps took (.ninja_log of the last build of each output: compile and "
+    "link, CPU seconds on up to two cores at once), and the slowest tests of the test stages (ctest's own times). "
+    "Every part's time is also in times.tsv, which balances the next sharded run (docs/ci.md).";
+
+std::string shard_words(const std::string& shard) {
+  return shard.rfind("joined", 0) == 0 ? shard : "shard " + shard + " (its part of the gate; `axisproof gate join` gives the verdict)";
+}
+
 // What the release artifact holds for the MCU: the size table says whether images were linked.
 std::string image_note(const Details& d) {
   if (d.m4_size_md.find("## Linked images") != std::string::npos) {
@@ -179,10 +188,12 @@ void write_reports(const Run& run, const std::string& dir) {
   const std::vector<std::string> fuzz_head = {"target", "executions", "exec/s", "corpus", "coverage (edges)", "findings"};
   const std::vector<std::string> mut_head = {"mutant", "models", "result", "seconds"};
   const std::vector<std::string> cov_head = {"file", "lines", "line %", "branches", "branch %"};
+  const std::vector<std::string> build_head = {"build target (asan)", "steps", "seconds", "share"};
+  const std::vector<std::string> test_head = {"test", "stage", "seconds", "share of its stage"};
 
   std::ofstream md(dir + "/report.md");
   md << "# axisproof release gate: " << (run.pass ? "PASS" : "FAIL") << "\n\n";
-  md << "Profile " << run.profile << ". axisproof " << run.version << ", commit " << run.git_hash << ", " << run.date << ", total "
+  md << "Profile " << run.profile << (run.shard == "1/1" ? "" : ", " + shard_words(run.shard)) << ". axisproof " << run.version << ", commit " << run.git_hash << ", " << run.date << ", total "
      << fmt_seconds(run.seconds) << ". A stage that could not run is NOT RUN and fails the gate.\n\n";
   md << "## Stages\n\n";
   md_table(md, stage_head, stage_rows(run));
@@ -207,6 +218,10 @@ void write_reports(const Run& run, const std::string& dir) {
     md << body;
   }
   md << "\n" << image_note(d) << "\n";
+  md << "\n## Where the time went\n\n" << kTimesNote << "\n\n";
+  if (!d.build_times.empty()) md_table(md, build_head, d.build_times);
+  md << "\n";
+  if (!d.test_times.empty()) md_table(md, test_head, d.test_times);
   md << "\n## Scenario plots\n\n";
   if (d.plots.empty()) md << "No SVG plots under out/sim/ (run `axisproof sim`).\n";
   for (const auto& p : d.plots) md << "- [" << p << "](" << p << ")\n";
@@ -218,7 +233,7 @@ void write_reports(const Run& run, const std::string& dir) {
           ".pass{background:#dfd}.fail{background:#fdd}.notrun{background:#fed}pre{background:#f6f6f6;padding:1em}"
           "h1 span.pass,h1 span.fail{padding:0 .3em}</style></head><body>\n";
   html << "<h1>axisproof release gate: <span class=\"" << (run.pass ? "pass" : "fail") << "\">" << (run.pass ? "PASS" : "FAIL")
-       << "</span></h1>\n<p>Profile " << xml_escape(run.profile) << ". axisproof " << xml_escape(run.version) << ", commit " << xml_escape(run.git_hash) << ", "
+       << "</span></h1>\n<p>Profile " << xml_escape(run.profile) << xml_escape(run.shard == "1/1" ? "" : ", " + shard_words(run.shard)) << ". axisproof " << xml_escape(run.version) << ", commit " << xml_escape(run.git_hash) << ", "
        << xml_escape(run.date) << ", total " << fmt_seconds(run.seconds)
        << ". A stage that could not run is NOT RUN and fails the gate.</p>\n";
   html << "<h2>Stages</h2>\n";
@@ -243,6 +258,9 @@ void write_reports(const Run& run, const std::string& dir) {
   html << "<h2>Cortex-M4 build</h2>\n";
   html << "<pre>" << xml_escape(d.m4_size_md.empty() ? "No size table (the cortex-m4 stage did not run)." : d.m4_size_md)
        << "</pre>\n<p>" << xml_escape(image_note(d)) << "</p>\n";
+  html << "<h2>Where the time went</h2>\n<p>" << xml_escape(kTimesNote) << "</p>\n";
+  if (!d.build_times.empty()) html_table(html, build_head, d.build_times);
+  if (!d.test_times.empty()) html_table(html, test_head, d.test_times);
   html << "<h2>Scenario plots</h2>\n";
   if (d.plots.empty()) html << "<p>No SVG plots under out/sim/ (run <code>axisproof sim</code>).</p>\n";
   for (const auto& p : d.plots) {

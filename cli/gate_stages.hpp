@@ -10,6 +10,8 @@
 #include "gate.hpp"
 #include "profile.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -39,20 +41,27 @@ bool asan_shared();            // build/asan has coverage and the libFuzzer bina
 int build_jobs();
 int count_tests(const std::string& preset, const std::string& labels, const std::string& exclude = "");
 std::string profile_dir();  // where the asan build's tests write coverage profiles
+std::string fuzz_replay_exclude();  // the fuzz tests the fuzz smoke does not replay (ctest -E)
+std::string shard_text();           // "I/N" of this shard ("1/1" when not sharded)
 // Runs job(0) .. job(count - 1) on up to build_jobs() threads at once.
 void run_parallel(std::size_t count, const std::function<void(std::size_t)>& job);
 
 // The stages, in the gate's order.
 Outcome build_stage(const std::string& preset, const std::string& log, const std::string& target = "");
-Outcome ctest_stage(const std::string& labels, const std::string& junit, const std::string& log,
-                    const std::string& exclude = "");
+Outcome ctest_stage(gate::Run& run, const std::string& id, const std::string& labels, const std::string& junit,
+                    const std::string& log, const std::string& exclude = "");
 Outcome proofs_stage(gate::Run& run, const std::string& log);
 Outcome fuzz_stage(gate::Run& run, const std::string& log);
-Outcome e2e_stage(const std::string& log);
+Outcome e2e_stage(gate::Run& run, const std::string& log);
 Outcome mutation_stage(gate::Run& run, const std::string& log);
 Outcome coverage_stage(gate::Run& run, const std::string& log);
+// The coverage report over the profiles in `profiles` (the join gives all shards' profiles).
+Outcome coverage_report(gate::Run& run, const std::string& log, const std::string& profiles);
 Outcome m4_stage(gate::Run& run, const std::string& log);
 Outcome qemu_stage(gate::Run& run, const std::string& log);
-Outcome bench_stage(const std::string& log);
+Outcome bench_stage(gate::Run& run, const std::string& log);
+
+// `axisproof gate join DIR...` (gate_join.cpp), a subcommand of `gate`.
+CLI::App* add_gate_join(CLI::App* gate);
 
 }  // namespace ap::cli::gate_stages
