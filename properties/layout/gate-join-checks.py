@@ -12,12 +12,19 @@ a temporary folder; reads and changes nothing in the tree.
 """
 import copy
 import json
+import re
 import os
 import subprocess
 import sys
 import tempfile
 
 AXISPROOF = sys.argv[1]
+# Any profile this axisproof has will do: the default one, as `gate --help` shows it.
+_help = subprocess.run([AXISPROOF, "gate", "--help"], capture_output=True, text=True, check=False).stdout
+_m = re.search(r"--profile TEXT:\{[^}]*\}=(\w+)", _help)
+if not _m:
+    sys.exit("gate-join-checks: `axisproof gate --help` shows no default profile")
+PROFILE = _m.group(1)
 PLAN = [["tests", "a", 1, 1.0], ["tests", "b", 2, 1.0], ["tests", "c", 1, 1.0], ["tests", "d", 2, 1.0]]
 failures = []
 
@@ -25,7 +32,7 @@ failures = []
 def shard(index, commit="c0ffee", result="PASS", parts=None, digest="d1"):
     mine = parts if parts is not None else [p[1] for p in PLAN if p[2] == index]
     return {
-        "format": 1, "profile": "xy", "profile_title": "xy (test)", "commit": commit, "version": "0", "date": "today",
+        "format": 1, "profile": PROFILE, "profile_title": PROFILE + " (test)", "commit": commit, "version": "0", "date": "today",
         "shard": [index, 2], "pass": result == "PASS", "seconds": 1.0,
         "plan": {"digest": digest, "times_file": "", "parts": PLAN},
         "rows": [{"id": "tests", "stage": "unit/property/proof tests", "result": result, "key": "k", "seconds": 1.0, "log": ""}],
@@ -55,7 +62,7 @@ def run_join(tmp, name, shards, want_rc, want_text):
 
 
 with tempfile.TemporaryDirectory() as tmp:
-    text = run_join(tmp, "good", [shard(1), shard(2)], 0, "verdict (profile xy (test)): PASS")
+    text = run_join(tmp, "good", [shard(1), shard(2)], 0, f"verdict (profile {PROFILE} (test)): PASS")
     if "4 tests, 0 failed (2 shards)" not in text:
         failures.append("good: the joined tests stage does not count the four parts:\n" + text)
     run_join(tmp, "missing", [shard(1)], 1, "shard 2/2 missing")
