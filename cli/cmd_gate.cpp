@@ -185,7 +185,8 @@ void add_gate(CLI::App& app) {
       if (std::string(s.id) == "build-asan" && o.result == Result::Pass) {
         const std::string from = times.empty() ? default_times_file() : fs::absolute(times).string();
         const std::string known = fs::exists(from) ? from : "";
-        g_plan = make_plan(list_parts(known), known, g_shard.on() ? g_shard.count : 1);
+        g_plan = make_plan(list_parts(known), parse_times(known.empty() ? std::string() : slurp(known)), g_shard.on() ? g_shard.count : 1);
+        g_plan.times_file = known.empty() ? "" : fs::relative(known, src).string();
         if (g_shard.on()) {
           double mine = 0, total = 0;
           int n = 0;
@@ -197,7 +198,7 @@ void add_gate(CLI::App& app) {
             }
           }
           std::printf("      shard %s: %d of %zu parts, %.0f of %.0f s by %s\n", shard_text().c_str(), n, g_plan.parts.size(), mine,
-                      total, g_plan.times_file.empty() ? "no recorded times (1 s each)" : fs::relative(g_plan.times_file, src).c_str());
+                      total, g_plan.times_file.empty() ? "no recorded times (1 s each)" : g_plan.times_file.c_str());
         }
       }
       std::printf("[%zu/%zu] %s: %s (%.1f s) %s\n", i + 1, all.size(), s.name, gate::to_string(o.result), secs, o.key.c_str());

@@ -51,90 +51,6 @@ bool parse_shard(const std::string& text, Shard* out, std::string* error) {
   return true;
 }
 
-namespace {
-
-// FNV-1a, 64 bit: a digest of the plan that is the same in every process and on every machine
-// (std::hash is neither).
-std::string fnv1a(const std::string& s) {
-  unsigned long long h = 1469598103934665603ULL;
-  for (const char c : s) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 1099511628211ULL;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", h);
-  return buf;
-}
-
-// stage -> part -> seconds, from a times file (stage TAB part TAB seconds; # comments).
-std::map<std::string, std::map<std::string, double>> read_times(const std::string& file) {
-  std::map<std::string, std::map<std::string, double>> t;
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream row(line);
-    std::string stage, name, secs;
-    if (!std::getline(row, stage, '\t') || !std::getline(row, name, '\t') || !std::getline(row, secs)) continue;
-    try {
-      t[stage][name] = std::stod(secs);
-    } catch (...) {
-      // a damaged line only costs balance, never correctness: the part gets the stage's mean
-    }
-  }
-  return t;
-}
-
-}  // namespace
-
-Plan make_plan(const std::map<std::string, std::vector<std::string>>& parts, const std::string& times_file, int count) {
-  Plan plan;
-  plan.times_file = times_file;
-  const auto times = times_file.empty() ? decltype(read_times("")){} : read_times(times_file);
-  for (const auto& [stage, names] : parts) {
-    const auto known = times.find(stage);
-    double sum = 0;
-    int n = 0;
-    if (known != times.end()) {
-      for (const auto& [name, s] : known->second) {
-        if (std::find(names.begin(), names.end(), name) != names.end()) {
-          sum += s;
-          ++n;
-        }
-      }
-    }
-    const double mean = n > 0 ? sum / n : 1.0;
-    for (const auto& name : names) {
-      double s = mean;
-      if (known != times.end()) {
-        const auto it = known->second.find(name);
-        if (it != known->second.end()) s = it->second;
-      }
-      plan.parts.push_back({stage, name, s, 1});
-    }
-  }
-  std::vector<std::size_t> order(plan.parts.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const auto& x = plan.parts[a];
-    const auto& y = plan.parts[b];
-    if (x.seconds != y.seconds) return x.seconds > y.seconds;
-    return std::tie(x.stage, x.name) < std::tie(y.stage, y.name);
-  });
-  std::vector<double> load(static_cast<std::size_t>(std::max(count, 1)), 0.0);
-  for (const std::size_t k : order) {
-    const auto least = std::min_element(load.begin(), load.end()) - load.begin();
-    plan.parts[k].shard = static_cast<int>(least) + 1;
-    load[static_cast<std::size_t>(least)] += plan.parts[k].seconds;
-  }
-  std::sort(plan.parts.begin(), plan.parts.end(),
-            [](const PlannedPart& a, const PlannedPart& b) { return std::tie(a.stage, a.name) < std::tie(b.stage, b.name); });
-  std::string all;
-  for (const auto& p : plan.parts) all += p.stage + "\t" + p.name + "\t" + std::to_string(p.shard) + "\n";
-  plan.digest = fnv1a(all);
-  return plan;
-}
-
 int shard_of(const std::string& stage, const std::string& name) {
   for (const auto& p : g_plan.parts) {
     if (p.stage == stage && p.name == name) return p.shard;
@@ -169,10 +85,14 @@ std::vector<std::string> ctest_names(const std::string& labels, const std::strin
                                           quote(profile_labels()) + (exclude.empty() ? "" : " -E " + quote(exclude)) +
                                           " 2>/dev/null",
                                       &st);
+  // A parameterised GoogleTest's ctest name has spaces ("Suite/Test.Case/p  # GetParam() = 3").
   std::vector<std::string> names;
-  const std::regex re(R"(Test\s+#\d+: (\S+))");
-  for (auto it = std::sregex_iterator(out.begin(), out.end(), re); it != std::sregex_iterator(); ++it) {
-    names.push_back((*it)[1].str());
+  std::istringstream in(out);
+  std::string line;
+  const std::regex re(R"(^\s*Test\s+#\d+: (.+)$)");
+  std::smatch m;
+  while (std::getline(in, line)) {
+    if (std::regex_match(line, m, re)) names.push_back(trim(m[1].str()));
   }
   return names;
 }
@@ -203,8 +123,15 @@ std::vector<gate::Item> read_ctest_junit(const std::string& file) {
     gate::Item item;
     item.name = attr(attrs, "name");
     const std::string status = attr(attrs, "status");
-    item.pass = status == "run";
-    item.result = item.pass ? "passed" : status.empty() ? "unknown" : status;
+    // A test that skipped itself (SKIP_RETURN_CODE / SKIP_REGULAR_EXPRESSION) is "notrun" with
+    // a <skipped message="SKIP_..."> in its body; ctest does not count it as failed, nor does
+    // the gate. Any other "notrun" (no executable, a failed fixture) is a failure.
+    const auto body_end = text.find("</testcase>", static_cast<std::size_t>(it->position() + it->length()));
+    const std::string body = text.substr(static_cast<std::size_t>(it->position() + it->length()),
+                                         body_end == std::string::npos ? 0 : body_end - static_cast<std::size_t>(it->position() + it->length()));
+    const bool skipped = status == "notrun" && body.find("<skipped message=\"SKIP_") != std::string::npos;
+    item.pass = status == "run" || skipped;
+    item.result = status == "run" ? "passed" : skipped ? "skipped" : status.empty() ? "unknown" : status;
     try {
       item.seconds = std::stod(attr(attrs, "time"));
     } catch (...) {
@@ -239,7 +166,7 @@ std::map<std::string, std::vector<std::string>> list_parts(const std::string& ti
   // The scenario the QEMU stage runs twice: the shortest by the recorded times (the first
   // declared when there are none), chosen before the plan so that every shard agrees.
   if (!g_profile->qemu_scenarios.empty()) {
-    const auto times = times_file.empty() ? decltype(read_times("")){} : read_times(times_file);
+    const auto times = parse_times(times_file.empty() ? std::string() : slurp(times_file));
     std::string best(g_profile->qemu_scenarios.front());
     double best_s = -1;
     if (times.count("qemu") != 0) {

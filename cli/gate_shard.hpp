@@ -7,6 +7,7 @@
 // computes the same plan without talking to the others; the join checks that they did
 // (gate_join.cpp).
 #include "gate.hpp"
+#include "gate_plan.hpp"
 
 #include <map>
 #include <string>
@@ -24,24 +25,7 @@ extern Shard g_shard;
 // "I/N" with 1 <= I <= N <= 64.
 bool parse_shard(const std::string& text, Shard* out, std::string* error);
 
-struct PlannedPart {
-  std::string stage;  // stage id (cmd_gate.cpp's table)
-  std::string name;
-  double seconds = 0;  // from the times file, or the stage's mean when the part is new
-  int shard = 1;
-};
-
-struct Plan {
-  std::vector<PlannedPart> parts;  // sorted by stage, name
-  std::string times_file;          // what balanced it ("" when there was none)
-  std::string digest;              // of (stage, name, shard) of every part: equal plans, equal digests
-};
 extern Plan g_plan;
-
-// Deals the parts to `count` shards: longest first, each to the shard with the least seconds
-// so far (ties: the lower shard), which keeps the longest shard within the longest part of
-// the mean.
-Plan make_plan(const std::map<std::string, std::vector<std::string>>& parts, const std::string& times_file, int count);
 
 // The parts of the profile's gate, listed from the asan build, the mutants and the profile.
 std::map<std::string, std::vector<std::string>> list_parts(const std::string& times_file);
