@@ -100,7 +100,7 @@ void add_gate(CLI::App& app) {
                   "Run the I-th of N balanced parts of every stage that can be split (I/N, e.g. 2/4), after the same builds; "
                   "`axisproof gate join` merges the N results (docs/ci.md)");
   sub->add_option("--times", times,
-                  "Balance the shards by the part times in FILE (default ci/gate-times/<profile>.tsv; every run writes "
+                  "Balance the shards by the part times in FILE (default ci/gate-times/<profile>/times.tsv; every run writes "
                   "OUT/gate/times.tsv)");
   auto* join = add_gate_join(sub);
   sub->final_callback([join] {

@@ -70,7 +70,7 @@ std::vector<std::string> my_parts(const std::string& stage, const std::vector<st
   return mine;
 }
 
-std::string default_times_file() { return source_dir() + "/ci/gate-times/" + std::string(g_profile->name) + ".tsv"; }
+std::string default_times_file() { return source_dir() + "/ci/gate-times/" + std::string(g_profile->name) + "/times.tsv"; }
 
 std::string repeat_scenario() {
   for (const auto& p : g_plan.parts) {

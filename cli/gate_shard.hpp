@@ -2,7 +2,7 @@
 // Sharding the release gate (docs/ci.md "Shards"): the parts of every stage that can be split
 // (ctest tests, end-to-end tests, fuzz replays and runs, mutants, proof obligations, QEMU
 // scenarios, and the one-piece m4 and bench stages), the seconds the last recorded run gave
-// each (ci/gate-times/<profile>.tsv), and the shard that runs each. Every shard of one commit
+// each (ci/gate-times/<profile>/times.tsv), and the shard that runs each. Every shard of one commit
 // lists the same parts from the same build and reads the same times file, so every shard
 // computes the same plan without talking to the others; the join checks that they did
 // (gate_join.cpp).
@@ -30,7 +30,7 @@ extern Plan g_plan;
 // The parts of the profile's gate, listed from the asan build, the mutants and the profile.
 std::map<std::string, std::vector<std::string>> list_parts(const std::string& times_file);
 
-// The times file the plan reads by default: ci/gate-times/<profile>.tsv.
+// The times file the plan reads by default: ci/gate-times/<profile>/times.tsv.
 std::string default_times_file();
 
 // This shard's parts of `stage` among `all`, in their order (all of them when not sharded).

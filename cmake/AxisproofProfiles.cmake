@@ -21,7 +21,7 @@
 # A profile outside this tree (docs/profiles.md "Your own firmware") declares itself the same
 # way after find_package(axisproof); ROOT is then its own source folder.
 
-set(AP_LAYER_DIRS core protocol firmware models pc sim properties fuzz bench cli scenarios ci/mutants)
+set(AP_LAYER_DIRS core protocol firmware models pc sim properties fuzz bench cli scenarios ci/mutants ci/gate-times)
 # The folders whose code is the profile's firmware and PC program: what the gate's coverage
 # figure measures (with USES) and what the cross build compiles (without pc).
 set(AP_COVERAGE_LAYERS core protocol pc)
