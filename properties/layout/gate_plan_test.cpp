@@ -2,7 +2,7 @@
 // shard, the longest shard within Graham's bound, balance by seconds and not by count, new parts
 // at their stage's mean, and the digest naming the assignment. The expectations are the
 // scheduling rule's own (longest first, to the least-loaded shard), not the code's constants.
-#include "gate_plan.hpp"
+#include "cli/gate_plan.hpp"
 
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
