@@ -81,7 +81,15 @@ std::string release_dir() { return g_out + "/release"; }
 std::string self_exe() {
   std::error_code ec;
   const auto p = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? build_dir("dev") + "/cli/axisproof" : p.string();
+  if (ec) return build_dir("dev") + "/cli/axisproof";
+  // The build (dev) stage may have relinked this very executable: the kernel then names the
+  // running one "PATH (deleted)", and PATH holds the new one, built from the same sources.
+  std::string path = p.string();
+  const std::string deleted = " (deleted)";
+  if (path.size() > deleted.size() && path.compare(path.size() - deleted.size(), deleted.size(), deleted) == 0) {
+    path.resize(path.size() - deleted.size());
+  }
+  return path;
 }
 
 // The profile the gate judges (--profile, docs/profiles.md): its tests and fuzz targets carry

@@ -329,7 +329,7 @@ Outcome qemu_stage(gate::Run& run, const std::string& log) {
                 "two runs at once); "
                 "stack high-water %lu of %lu B",
                 passed, g_shard.on() ? names.size() : n, g_shard.on() ? (" (of " + std::to_string(n) + ", shard " + shard_text() + ")").c_str() : "",
-                repeat ? (", " + again_name + " repeatable").c_str() : "", emulated, wall, wall > 0 ? emulated / wall : 0.0, stack, stack_size);
+                repeat ? (", " + again_name + (repeatable ? " repeatable" : " NOT repeatable")).c_str() : "", emulated, wall, wall > 0 ? emulated / wall : 0.0, stack, stack_size);
   std::string key = buf;
   for (std::size_t i = 0; i < bad.size() && i < 3; ++i) key += (i ? ", " : "; ") + bad[i];
   const bool all_passed = passed == static_cast<int>(names.size());
