@@ -46,7 +46,7 @@ case $key in
   every_command_has_a_smoke)
     known=" axisproof-gate axisproof-test axisproof-prove axisproof-fuzz axisproof-sim axisproof-frame axisproof-regs
             axisproof-gcode axisproof-bench ci-mutate ci-nightly-fuzz ci-coverage ci-m4-build ci-fresh-machine
-            ci-compare-gate-results "
+            ci-compare-gate-results ci-check-workflows "
     known=" $(echo $known) "
     n=0
     for k in $(readme_keys); do
@@ -81,6 +81,9 @@ case $key in
   ci-compare-gate-results)
     # Covered with the shards above (axisproof-gate); here: unreadable input is exit 2.
     expect 2 'no result.json' ci/compare-gate-results "$tmp/nothing" "$tmp/nothing" ;;
+  ci-check-workflows)
+    # The workflow files the README points a team to (docs/ci.md), against this build's CLI.
+    expect 0 'no problems' ci/check-workflows --cli "$build/cli/axisproof" ;;
   axisproof-test)
     expect 0 '100% tests passed' ./axisproof test --preset "$preset" -R '^cli\.unknown_subcommand_exits_2$' ;;
   axisproof-prove)
