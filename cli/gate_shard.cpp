@@ -248,8 +248,10 @@ void write_times(const gate::Run& run, const std::string& file) {
 }
 
 void time_tables(gate::Run& run, const std::string& build) {
-  // .ninja_log: start ms, end ms, mtime, output, hash (version 5). An output's target is the
-  // folder before CMakeFiles/<target>.dir, or the output itself for a link.
+  // .ninja_log: start ms, end ms, mtime, output, hash (version 5), one line per output, so a
+  // step with several outputs (an object and its PCH, a custom command's files) logs several
+  // lines with the same start, end and command hash: it is counted once. A step's target is the
+  // folder before CMakeFiles/<target>.dir in one of its outputs, or the output itself for a link.
   std::ifstream in(build + "/.ninja_log");
   std::string line;
   std::map<std::string, std::pair<int, double>> per;  // target -> steps, seconds
@@ -257,28 +259,34 @@ void time_tables(gate::Run& run, const std::string& build) {
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#') continue;
     std::istringstream row(line);
-    std::string start, end, mtime, output;
+    std::string start, end, mtime, output, hash;
     if (!std::getline(row, start, '\t') || !std::getline(row, end, '\t') || !std::getline(row, mtime, '\t') ||
         !std::getline(row, output, '\t')) {
       continue;
     }
-    last[output] = start + "\t" + end;
+    std::getline(row, hash, '\t');
+    last[output] = start + "\t" + end + "\t" + hash;
   }
-  double total = 0;
   const std::regex obj(R"(CMakeFiles/([^/]+)\.dir/)");
-  for (const auto& [output, span] : last) {
-    const auto tab = span.find('\t');
+  std::map<std::string, std::pair<std::string, double>> steps;  // start, end, hash -> target, seconds
+  for (const auto& [output, step] : last) {
+    const auto tab = step.find('\t');
     double secs = 0;
     try {
-      secs = (std::stod(span.substr(tab + 1)) - std::stod(span.substr(0, tab))) / 1000.0;
+      secs = (std::stod(step.substr(tab + 1)) - std::stod(step.substr(0, tab))) / 1000.0;
     } catch (...) {
       continue;
     }
     std::smatch m;
-    const std::string target = std::regex_search(output, m, obj) ? m[1].str() : fs::path(output).filename().string();
-    per[target].first += 1;
-    per[target].second += secs;
-    total += secs;
+    const bool in_target = std::regex_search(output, m, obj);
+    auto [it, added] = steps.try_emplace(step, in_target ? m[1].str() : fs::path(output).filename().string(), secs);
+    if (!added && in_target) it->second.first = m[1].str();
+  }
+  double total = 0;
+  for (const auto& [step, target_secs] : steps) {
+    per[target_secs.first].first += 1;
+    per[target_secs.first].second += target_secs.second;
+    total += target_secs.second;
   }
   std::vector<std::pair<std::string, std::pair<int, double>>> rows(per.begin(), per.end());
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return a.second.second > b.second.second; });
@@ -292,7 +300,7 @@ void time_tables(gate::Run& run, const std::string& build) {
   }
   if (!rows.empty()) {
     std::snprintf(buf, sizeof buf, "%.1f", total);
-    run.details.build_times.push_back({"(all " + std::to_string(rows.size()) + " targets, " + std::to_string(last.size()) + " steps; CPU seconds)", "", buf, "100 %"});
+    run.details.build_times.push_back({"(all " + std::to_string(rows.size()) + " targets, " + std::to_string(steps.size()) + " steps; CPU seconds)", "", buf, "100 %"});
   }
   std::vector<std::pair<std::string, gate::Item>> tests;
   std::map<std::string, double> stage_total;
