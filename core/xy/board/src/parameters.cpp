@@ -103,15 +103,8 @@ HandlerStatus Board::set_parameter(Axis a, c::CommandId id, st::ParamId pid, std
   // At rest also means holding no motion: a jog held at its reversal stop or at a soft limit
   // steps again on the next tick, and the mechanics change below would drop its mode without
   // an event (docs/echo-model.md).
-  // A move standing on its target is finished (REACHED; the axis core drops it on the next
-  // tick, edge I): it holds nothing.
-  const auto finished = [this](std::size_t k) {
-    return axes_[k].mode == xy_axis::Mode::Position && axes_[k].pos == axes_[k].target;
-  };
-  const auto holds = [this, &finished](std::size_t k) {
-    return moving(axes_[k]) || (axes_[k].mode != xy_axis::Mode::Idle && !finished(k));
-  };
-  if (!currents && (holds(0) || holds(1) ||
+  // A move standing on its target holds nothing (holds_motion).
+  if (!currents && (holds_motion(axes_[0]) || holds_motion(axes_[1]) ||
                     (mechanics && (pending_motion(0) == Pending::Accepted || pending_motion(1) == Pending::Accepted)))) {
     return refuse(a, id);
   }

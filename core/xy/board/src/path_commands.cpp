@@ -5,6 +5,7 @@
 
 #include "core/xy/board/board.hpp"
 #include "protocol/xy/codec/commands.hpp"
+#include "helpers.hpp"
 
 namespace ap::xy_board {
 
@@ -95,11 +96,12 @@ void Board::commit_path_frame(const xy_frame::CommandFrame& f) {
     if (kind != c::CommandId::Nop && ids[i] != kind) return refuse_parts(xy_path::Error::MixedParts);
     kind = ids[i];
   }
-  // What every motion command needs: awake, the position known, no axis moving on its own.
+  // What every motion command needs: awake, the position known, no axis moving on its own or
+  // holding a motion (holds_motion: a move standing on its target is finished).
   bool busy = false;
   for (std::size_t i = 0; i < kAxes; ++i) {
     if (axes_[i].homed == 0) return refuse_parts(xy_path::Error::NotHomed);
-    if (!path_.active() && (axes_[i].phase != xy_axis::Phase::Stop || axes_[i].mode != xy_axis::Mode::Idle)) busy = true;
+    if (!path_.active() && holds_motion(axes_[i])) busy = true;
     // A motion command taken earlier in this tick is stored, not yet applied: the segment would
     // silently replace it, so the segment is the one refused.
     const xy_axis::CmdKind k = pending_[i].kind;

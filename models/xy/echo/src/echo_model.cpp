@@ -137,6 +137,9 @@ void EchoModel::sleep_all() {
     supersede(b);
     Ax& y = ax_[b];
     if (y.act != Activity::Idle) {
+      // As for a stop: a move that comes to rest on its target in this tick reached it
+      // (docs/echo-model.md "Decisions").
+      y.stopped_move_now = y.act == Activity::Position;
       y.act = Activity::Braking;
       y.stop_requested = true;
     }

@@ -28,6 +28,7 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
   if (since_dispatch_ < 0xFFFFFFFFU) ++since_dispatch_;
   // cnc.md "Stops": a lost link or a closed session stops the path (unlike a move).
   if (!alive) path_request_stop(PathStop::Link);
+  std::array<bool, kAxes> halted_on_switch{};
   for (std::size_t a = 0; a < kAxes; ++a) {
     Ax& x = ax_[a];
     const AxisMotion& m = motion[a];
@@ -50,9 +51,19 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
 
     const bool at_min = env_.endstop_min[a], at_max = env_.endstop_max[a];
     const bool endstop_in_dir = (prev.dir < 0 && at_min) || (prev.dir > 0 && at_max);
+    // Halted, not come to rest: it stepped in its last tick, or it stands straight from ACCEL
+    // or CONST (a controlled stop ends in DECEL).
+    halted_on_switch[a] = was_moving && (prev.steps > 0 || prev.phase != Phase::Decel) && !moving &&
+                          ((prev.dir < 0 && (at_min || x.latch_min)) || (prev.dir > 0 && (at_max || x.latch_max)));
 
     if (block_ != EchoStatus::Idle) {
-      if (moving && !was_moving) violations_.push_back("axis " + std::string(a == 0 ? "x" : "y") + " started while blocked");
+      // A path chain whose S-curve had begun when the block came brakes along it (cnc.md
+      // "Stops"), and its first braking tick may be the first to show motion, as for a user
+      // stop (fuzz/regressions/board/block-of-a-chain-before-its-first-step).
+      const bool chain_braking = path_.running && path_.chain_running;
+      if (moving && !was_moving && !chain_braking) {
+        violations_.push_back("axis " + std::string(a == 0 ? "x" : "y") + " started while blocked");
+      }
       // The event that ended the last motion stands until G16 clears it at the block's end;
       // the answer to a repeat shows it meanwhile (docs/protocol.md "What a repeat answers").
       // The braking under the block may end on a switch, or, in the block's first tick, on the
@@ -132,7 +143,7 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
     }
     x.last = m;
   }
-  path_end_tick(motion);
+  path_end_tick(motion, halted_on_switch);
   sensors_tick();
   if (taken_this_tick_) {
     last_block_ = block_;

@@ -77,7 +77,7 @@ void EchoModel::path_frame(const xy_frame::CommandFrame& f) {
   for (Ax& x : ax_) x.ended = Ended::None;
 }
 
-void EchoModel::path_end_tick(const Motion& motion) {
+void EchoModel::path_end_tick(const Motion& motion, const std::array<bool, kAxes>& halted_on_switch) {
   path_.queued = motion.path.queued;
   path_.chain_running = motion.path.chain_running;
   if (motion.path.active && !path_.running) {
@@ -89,13 +89,16 @@ void EchoModel::path_end_tick(const Motion& motion) {
   }
   if (!path_.running || motion.path.active) return;
   // The path came to rest (cnc.md "Stops"): a stop names its cause; otherwise at the end of
-  // the last segment it reached it, and short of it an endstop halted it.
+  // the last segment it reached it, and short of it an endstop halted it. A switch that halts
+  // the controlled stop of a user stop or a lost link ended it, as it ends a braking axis
+  // (docs/echo-model.md "Decisions"); under a block the event is cleared anyway (G16).
   Ended e = Ended::None;
   const bool at_end = motion[0].pos == path_.end[0] && motion[1].pos == path_.end[1];
+  const bool on_switch = halted_on_switch[0] || halted_on_switch[1];
   switch (path_.stop) {
     case PathStop::Block: e = Ended::None; break;
-    case PathStop::User: e = Ended::Stopped; break;
-    case PathStop::Link: e = Ended::LinkLost; break;
+    case PathStop::User: e = on_switch ? Ended::Endstop : Ended::Stopped; break;
+    case PathStop::Link: e = on_switch ? Ended::Endstop : Ended::LinkLost; break;
     case PathStop::None: e = at_end ? Ended::Reached : Ended::Endstop; break;
   }
   path_finish(e);

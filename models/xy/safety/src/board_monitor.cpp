@@ -139,6 +139,14 @@ void BoardMonitor::check_axis(const xy_board::Board& b, std::size_t a, bool mech
     x.side = p.pos > n.target ? 1 : (p.pos < n.target ? -1 : 0);
   }
   if (!x.tracking) return;
+  // A counter that moved by more than the tick's steps was re-referenced, not driven: Home
+  // given as the carriage runs onto the min switch takes the reference there (motion.md §6,
+  // G19; docs/echo-model.md "Decisions"), and the jump to 0 passes no target on the table.
+  const std::int64_t moved = static_cast<std::int64_t>(n.pos) - p.pos;
+  if ((moved < 0 ? -moved : moved) > static_cast<std::int64_t>(o.steps)) {
+    x.tracking = false;
+    return;
+  }
   const int side = n.pos > x.target ? 1 : (n.pos < x.target ? -1 : 0);
   if (side != 0 && x.side != 0 && side != x.side) bad("reachable target passed");
   if (side != 0) x.side = side;

@@ -235,7 +235,11 @@ class EchoModel {
   void path_frame(const xy_frame::CommandFrame& f);
   const char* path_verdict(const xy_frame::CommandFrame& f, std::array<std::int32_t, kAxes>& end) const;
   void path_request_stop(PathStop why);
-  void path_end_tick(const Motion& motion);
+  // halted_on_switch: per axis, it stands now after a tick in which it stepped or was not yet
+  // braking, and its last direction points into an active or latched endstop (cnc.md "Stops":
+  // the path halts when an axis is about to step into the switch; one whose controlled stop
+  // made no step toward it came to rest by itself).
+  void path_end_tick(const Motion& motion, const std::array<bool, kAxes>& halted_on_switch);
   void path_finish(Ended e);
 
   void dispatch(xy_frame::Axis a, xy_codec::CommandId id, std::int32_t d);
