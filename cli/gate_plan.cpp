@@ -6,7 +6,9 @@
 #include <numeric>
 #include <set>
 #include <sstream>
+#include <string>
 #include <tuple>
+#include <utility>
 
 namespace ap::cli::gate_stages {
 namespace {
@@ -90,6 +92,28 @@ Plan make_plan(const std::map<std::string, std::vector<std::string>>& parts, con
   for (const auto& p : plan.parts) all += p.stage + "\t" + p.name + "\t" + std::to_string(p.shard) + "\n";
   plan.digest = fnv1a(all);
   return plan;
+}
+
+std::string xml_unescape(const std::string& text) {
+  static const std::pair<const char*, char> kEntities[] = {
+      {"&quot;", '"'}, {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&apos;", '\''}};
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    bool replaced = false;
+    if (text[i] == '&') {
+      for (const auto& [entity, c] : kEntities) {
+        if (text.compare(i, std::char_traits<char>::length(entity), entity) == 0) {
+          out += c;
+          i += std::char_traits<char>::length(entity);
+          replaced = true;
+          break;
+        }
+      }
+    }
+    if (!replaced) out += text[i++];
+  }
+  return out;
 }
 
 }  // namespace ap::cli::gate_stages

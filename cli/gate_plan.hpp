@@ -35,4 +35,9 @@ PartTimes parse_times(const std::string& text);
 // of the mean (Graham's bound for this greedy rule).
 Plan make_plan(const std::map<std::string, std::vector<std::string>>& parts, const PartTimes& times, int count);
 
+// A JUnit attribute's text as ctest -N names the part: ctest's JUnit writer escapes & < > " '
+// (a parameterised gtest's name carries `# GetParam() = "..."`), the plan does not, and the
+// join matches the two by name. One pass, left to right; an unknown entity stays as it is.
+std::string xml_unescape(const std::string& text);
+
 }  // namespace ap::cli::gate_stages

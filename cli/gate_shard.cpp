@@ -121,7 +121,7 @@ std::vector<gate::Item> read_ctest_junit(const std::string& file) {
   for (auto it = std::sregex_iterator(text.begin(), text.end(), tag); it != std::sregex_iterator(); ++it) {
     const std::string attrs = (*it)[1].str();
     gate::Item item;
-    item.name = attr(attrs, "name");
+    item.name = xml_unescape(attr(attrs, "name"));
     const std::string status = attr(attrs, "status");
     // A test that skipped itself (SKIP_RETURN_CODE / SKIP_REGULAR_EXPRESSION) is "notrun" with
     // a <skipped message="SKIP_..."> in its body; ctest does not count it as failed, nor does

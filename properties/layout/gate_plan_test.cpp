@@ -18,6 +18,7 @@ namespace {
 
 using ap::cli::gate_stages::make_plan;
 using ap::cli::gate_stages::parse_times;
+using ap::cli::gate_stages::xml_unescape;
 using ap::cli::gate_stages::PartTimes;
 using Parts = std::map<std::string, std::vector<std::string>>;
 
@@ -152,6 +153,15 @@ TEST(GatePlan, TimesFileLinesThatDoNotParseAreSkipped) {
   EXPECT_EQ(t.at("tests").size(), 1U);
   EXPECT_DOUBLE_EQ(t.at("tests").at("a"), 1.5);
   EXPECT_DOUBLE_EQ(t.at("fuzz").at("target:x"), 10.0);
+}
+
+// The name ctest's JUnit gives a parameterised test, read back as ctest -N lists it.
+TEST(GatePlan, JunitNamesReadAsCtestListsThem) {
+  EXPECT_EQ(xml_unescape("SimScenario/Bundled.Passes/sensors  # GetParam() = &quot;sensors&quot;"),
+            "SimScenario/Bundled.Passes/sensors  # GetParam() = \"sensors\"");
+  EXPECT_EQ(xml_unescape("a &lt;b&gt; &amp; &apos;c&apos;"), "a <b> & 'c'");
+  EXPECT_EQ(xml_unescape("&amp;quot;"), "&quot;");  // one pass
+  EXPECT_EQ(xml_unescape("&nbsp; &"), "&nbsp; &");  // unknown or bare: kept
 }
 
 }  // namespace
