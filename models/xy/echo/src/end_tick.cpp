@@ -52,9 +52,10 @@ std::span<const Expected> EchoModel::end_tick(const Motion& motion) {
     const bool at_min = env_.endstop_min[a], at_max = env_.endstop_max[a];
     const bool endstop_in_dir = (prev.dir < 0 && at_min) || (prev.dir > 0 && at_max);
     // Halted, not come to rest: it stepped in its last tick, or it stands straight from ACCEL
-    // or CONST (a controlled stop ends in DECEL).
+    // or CONST (a controlled stop ends in DECEL), its way on closed by an active or latched
+    // switch (motion_allowed, motion.md §4).
     halted_on_switch[a] = was_moving && (prev.steps > 0 || prev.phase != Phase::Decel) && !moving &&
-                          ((prev.dir < 0 && (at_min || x.latch_min)) || (prev.dir > 0 && (at_max || x.latch_max)));
+                          !motion_allowed(a, prev.dir);
 
     if (block_ != EchoStatus::Idle) {
       // A path chain whose S-curve had begun when the block came brakes along it (cnc.md
