@@ -71,19 +71,21 @@ struct Streamed {
   cr::Point pos{};
   std::size_t delivered = 0;
   std::string unexpected;  // a refusal other than QueueFull
+  bool active = false;     // the executor still had a path when the run ended
 };
 
 // A PC streaming a contour: up to `burst` segments a tick, in order; on QueueFull it waits (the
 // next tick it tries the same segment again); path_end only after the last segment. The board
 // ticks after the PC's frames. Stops at the end of the path, on the checker's first violation,
-// or after max_ticks.
+// after max_ticks without path_end (the checker's live.space bounds every wait before it), or
+// once the checker's live.end deadline has passed (the docs' time bound of the chains left).
 Streamed stream(const std::vector<cr::Segment>& segs, const ap::xy_path::Limits& lim, std::size_t burst,
                 std::uint64_t max_ticks = 400000) {
   Executor e;
   Streamed r{cr::ChainChecker(config_of(lim), segs.front().start), segs.front().start, 0, {}};
   ap::xy_path::Point pos{static_cast<std::int32_t>(r.pos[0]), static_cast<std::int32_t>(r.pos[1])};
   bool end_sent = false;
-  for (std::uint64_t t = 0; t < max_ticks; ++t) {
+  for (std::uint64_t t = 0; end_sent ? r.chk.ticks() <= r.chk.end_deadline() : t < max_ticks; ++t) {
     for (std::size_t b = 0; b < burst && !end_sent; ++b) {
       if (r.delivered < segs.size()) {
         const Error err = e.add(to_core(segs[r.delivered]), lim);
@@ -112,6 +114,7 @@ Streamed stream(const std::vector<cr::Segment>& segs, const ap::xy_path::Limits&
     if (end_sent && !e.active()) break;
   }
   r.pos = {pos[0], pos[1]};
+  r.active = e.active();
   r.chk.finish();
   return r;
 }
@@ -243,6 +246,26 @@ TEST(PathChainRules, TheCheckerCatchesACornerPassedAtSpeedAndAnOpenChainStarted)
   EXPECT_EQ(q.violations().front().rule, "corner.rest");
 }
 
+TEST(PathChainRules, TheCheckerCatchesAPathThatOutlastsItsChainsTime) {
+  cr::Config c;
+  c.v_max = 1000;
+  c.a_max = 2000;
+  c.j_max = 20000;
+  cr::ChainChecker k(c, {0, 0});
+  k.accepted({cr::Kind::Line, {0, 0}, {100, 0}, {}});
+  k.path_end();
+  // 100 moves at a cap of 1000 moves/s take well under 2 s; this board creeps at 20 moves/s.
+  std::int64_t x = 0;
+  for (int t = 1; t <= 5000 && k.ok(); ++t) {
+    const bool step = t % 50 == 0;
+    if (step) ++x;
+    k.tick({x, 0}, {20000, 0}, {step ? 1 : 0, 0});
+  }
+  ASSERT_FALSE(k.ok());
+  EXPECT_EQ(k.violations().front().rule, "live.end") << k.report();
+  EXPECT_LT(x, 100);
+}
+
 // ---- the executor under the checker ------------------------------------------------------------
 
 // docs/cnc.md "Speeds": a tangent line into a small arc. The line alone may run at v_max; the
@@ -327,6 +350,69 @@ TEST(PathChainRules, APcThatFillsTheQueueAtOnceGetsSpaceAgain) {
   EXPECT_LT(r.chk.first_motion_tick(), r.chk.path_end_tick());
 }
 
+// Two contours the random property found (seeds 8671320251570440452 and 4198763284520829351,
+// shrunk): a small arc early in a long tangent chain caps the whole chain (docs/cnc.md "Speeds":
+// the cap is the chain's), so the path runs for minutes at a few dozen moves/s. Both must end
+// where they should, within the docs' time bound for their chains.
+TEST(PathChainRules, ALongChainCappedByAnEarlyUnitArcEnds) {
+  const auto lim = limits(300, 1000, 20000);
+  using K = cr::Kind;
+  std::vector<cr::Segment> segs{
+      {K::Line, {0, 0}, {-1, -1}, {}},
+      {K::Line, {-1, -1}, {-2, -2}, {}},
+      {K::ArcCw, {-2, -2}, {-3, -2}, {-3, -1}},
+      {K::ArcCw, {-3, -2}, {-23, 8}, {-3, 23}},
+      {K::Line, {-23, 8}, {-26, 12}, {}},
+      {K::ArcCcw, {-26, 12}, {-2561, -1504}, {-1214, -879}},
+      {K::Line, {-2561, -1504}, {-1936, -2851}, {}},
+      {K::ArcCw, {-1936, -2851}, {-4649, -2893}, {-3283, -3476}},
+      {K::Line, {-4649, -2893}, {-4066, -1527}, {}},
+      {K::ArcCcw, {-4066, -1527}, {-6555, -1916}, {-5432, -944}},
+  };
+  const Streamed r = stream(segs, lim, 1);
+  EXPECT_TRUE(r.unexpected.empty()) << r.unexpected;
+  EXPECT_TRUE(r.chk.ok()) << r.chk.report();
+  EXPECT_FALSE(r.active);
+  EXPECT_EQ(r.delivered, segs.size());
+  EXPECT_EQ(r.pos, segs.back().end);
+  // The unit arc's cap, sqrt(1000 * 1 / 2) = 22 moves/s, holds its chain's thousands of moves:
+  // longer than the 400 000 ticks the harness used to allow, which made this a false hang.
+  EXPECT_GT(r.chk.ticks(), 400000U);
+}
+
+TEST(PathChainRules, ALongChainCappedByAnEarlyUnitArcAndAFullCircleEnds) {
+  const auto lim = limits(300, 1000, 20000);
+  using K = cr::Kind;
+  std::vector<cr::Segment> segs{
+      {K::Line, {0, 0}, {-1, -1}, {}},
+      {K::ArcCw, {-1, -1}, {-2, -1}, {-2, 0}},
+      {K::ArcCw, {-2, -1}, {-551, 2961}, {-2, 1531}},
+      {K::Line, {-551, 2961}, {879, 3510}, {}},
+      {K::Line, {879, 3510}, {2309, 4059}, {}},
+      {K::Line, {2309, 4059}, {1412, 2265}, {}},
+      {K::Line, {1412, 2265}, {1394, 2229}, {}},
+      {K::Line, {1394, 2229}, {226, -107}, {}},
+      {K::Line, {226, -107}, {-572, -1703}, {}},
+      {K::ArcCw, {-572, -1703}, {-572, -1703}, {-574, -1702}},
+      {K::Line, {-572, -1703}, {-783, -2125}, {}},
+      {K::Line, {-783, -2125}, {-788, -2131}, {}},
+      {K::Line, {-788, -2131}, {-828, -2171}, {}},
+      {K::Line, {-828, -2171}, {-1513, -2856}, {}},
+      {K::Line, {-1513, -2856}, {-1514, -2857}, {}},
+      {K::ArcCw, {-1514, -2857}, {-1515, -2857}, {-1515, -2856}},
+      {K::Line, {-1515, -2857}, {-1848, -2857}, {}},
+  };
+  const Streamed r = stream(segs, lim, 1);
+  EXPECT_TRUE(r.unexpected.empty()) << r.unexpected;
+  EXPECT_TRUE(r.chk.ok()) << r.chk.report();
+  EXPECT_FALSE(r.active);
+  EXPECT_EQ(r.delivered, segs.size());
+  EXPECT_EQ(r.pos, segs.back().end);
+  // The unit arc's cap, sqrt(1000 * 1 / 2) = 22 moves/s, holds its chain's thousands of moves:
+  // longer than the 400 000 ticks the harness used to allow, which made this a false hang.
+  EXPECT_GT(r.chk.ticks(), 400000U);
+}
+
 // Random contours, streamed one segment a tick or in bursts, every rule of the checker.
 RC_GTEST_PROP(PathChainRulesProps, RandomContoursStreamedByAPcKeepEveryChainRule, ()) {
   const auto segs = *gen_contour(1, 24, 25, 3000, 2500);
@@ -336,6 +422,7 @@ RC_GTEST_PROP(PathChainRulesProps, RandomContoursStreamedByAPcKeepEveryChainRule
   if (r.unexpected.find("too long") != std::string::npos) RC_DISCARD("a contour beyond the documented ranges");
   RC_ASSERT(r.unexpected.empty());
   if (!r.chk.ok()) RC_FAIL(r.chk.report());
+  RC_ASSERT(!r.active);
   RC_ASSERT(r.delivered == segs.size());
   RC_ASSERT(r.pos == segs.back().end);
 }
@@ -349,6 +436,7 @@ RC_GTEST_PROP(PathChainRulesProps, TangentContoursLongerThanTheQueueNeverDeadloc
   if (r.unexpected.find("too long") != std::string::npos) RC_DISCARD("a contour beyond the documented ranges");
   RC_ASSERT(r.unexpected.empty());
   if (!r.chk.ok()) RC_FAIL(r.chk.report());
+  RC_ASSERT(!r.active);
   RC_ASSERT(r.delivered == segs.size());
   RC_ASSERT(r.pos == segs.back().end);
   RC_ASSERT(r.chk.first_motion_tick() < r.chk.path_end_tick());

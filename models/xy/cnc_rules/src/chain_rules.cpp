@@ -89,6 +89,24 @@ std::uint64_t ChainChecker::start_bound(std::size_t from, std::size_t to) const 
   return static_cast<std::uint64_t>(std::ceil(arc_moves / c_.count_budget)) + 2 + creep_ticks(c_);
 }
 
+std::uint64_t ChainChecker::remaining_ticks_bound() const {
+  std::uint64_t total = 0;
+  std::size_t k = freed_;
+  while (k < segs_.size()) {
+    const std::size_t from = k;
+    double moves = 0;
+    double cap = std::numeric_limits<double>::infinity();
+    for (;; ++k) {
+      moves += static_cast<double>(moves_bound(segs_[k]));
+      cap = std::min(cap, caps_[k]);
+      if (k + 1 >= segs_.size() || !chain_next_[k]) break;
+    }
+    total += start_bound(from, k) + chain_ticks_bound(c_, moves, cap);
+    ++k;
+  }
+  return total;
+}
+
 void ChainChecker::accepted(const Segment& s) {
   const std::size_t k = segs_.size();
   // docs/cnc.md "Refusals": QueueFull when 16 segments wait. The checker counts a segment as
@@ -150,7 +168,10 @@ void ChainChecker::refused_queue_full() {
 
 void ChainChecker::path_end() {
   if (!segs_.empty()) end_after_.back() = true;
-  if (!end_sent_) end_tick_ = tick_;
+  if (!end_sent_) {
+    end_tick_ = tick_;
+    end_deadline_ = tick_ + remaining_ticks_bound();
+  }
   end_sent_ = true;
 }
 
@@ -340,6 +361,14 @@ void ChainChecker::tick(const Point& pos, const std::array<std::int64_t, 2>& v_f
       fail("live.space", "the PC has waited " + std::to_string(tick_ - wait_since_) + " ticks for queue space (bound " +
                              std::to_string(wait_bound_) + ")");
     }
+  }
+
+  // live.end: the path at rest at its end by the deadline path_end set.
+  if (end_sent_ && !end_reported_ && tick_ > end_deadline_ && (moving_ || freed_ < segs_.size())) {
+    end_reported_ = true;
+    fail("live.end", "the path has not ended " + std::to_string(tick_ - end_tick_) +
+                         " ticks after path_end (bound " + std::to_string(end_deadline_ - end_tick_) + ", " +
+                         std::to_string(segs_.size() - freed_) + " segments not run)");
   }
 
   ticks_.push_back({v, allowance, cheb});

@@ -45,6 +45,11 @@
 //                 otherwise wait for ever;
 //   live.space    a PC refused with QueueFull is accepted within the bound of the head chain's
 //                 start and run (its S-curve at the chain's cap);
+//   live.end      after path_end the path is at rest at its last segment's end within the sum,
+//                 over the chains still to run, of each chain's start bound and its S-curve's
+//                 time at the chain's lowest cap ("Chains", "Speeds": one S-curve per chain at
+//                 its segments' lowest limits). A small arc in a long tangent chain holds the
+//                 whole chain at its cap, so a contour may rightly take many minutes;
 //   queue.full    QueueFull only when 16 segments wait ("Refusals"; a segment waits until its
 //                 chain has run to rest, docs/echo-model.md "queued").
 #pragma once
@@ -138,6 +143,8 @@ class ChainChecker {
   [[nodiscard]] std::uint64_t first_motion_tick() const { return first_motion_; }  // ~0: none
   [[nodiscard]] bool path_end_sent() const { return end_sent_; }
   [[nodiscard]] std::uint64_t path_end_tick() const { return end_tick_; }
+  // The tick by which the path must be at rest at its end (live.end); ~0 before path_end.
+  [[nodiscard]] std::uint64_t end_deadline() const { return end_deadline_; }
   [[nodiscard]] double max_arc_speed_over_cap() const { return max_arc_ratio_; }
   [[nodiscard]] std::size_t rests() const { return rests_; }
 
@@ -152,6 +159,7 @@ class ChainChecker {
   [[nodiscard]] std::size_t head_chain_end() const;  // last index of the chain at freed_
   [[nodiscard]] bool head_closed(std::string* why) const;
   [[nodiscard]] std::uint64_t start_bound(std::size_t from, std::size_t to) const;
+  [[nodiscard]] std::uint64_t remaining_ticks_bound() const;  // the chains from freed_ on
   void check_window();
 
   Config c_;
@@ -163,6 +171,8 @@ class ChainChecker {
   std::uint64_t open_moves_ = 0;  // moves bound of the open chain the last segment ends
   bool end_sent_ = false;
   std::uint64_t end_tick_ = ~std::uint64_t{0};
+  std::uint64_t end_deadline_ = ~std::uint64_t{0};
+  bool end_reported_ = false;
 
   std::size_t freed_ = 0;  // segments whose chain has run to rest
   std::size_t cur_ = 0;    // the segment the carriage is on
