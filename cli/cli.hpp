@@ -14,6 +14,8 @@ namespace ap::cli {
 
 // Exit status the chosen subcommand wants; set from its callback.
 int& exit_status();
+// Set by Ctrl-C or SIGTERM while `axisproof panel` serves (cmd_panel.cpp).
+bool panel_stop_requested();
 
 std::string source_dir();
 std::string build_dir(const std::string& preset);
@@ -42,5 +44,6 @@ void add_fuzz(CLI::App& app);
 void add_sim(CLI::App& app);
 void add_bench(CLI::App& app);
 void add_frame(CLI::App& app);
+void add_panel(CLI::App& app);
 
 }  // namespace ap::cli

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   ap::cli::add_sim(app);
   ap::cli::add_bench(app);
   ap::cli::add_frame(app);
+  ap::cli::add_panel(app);
   // Subcommands only one profile has, from its entry (add_commands, cli/profile.hpp).
   for (const auto& p : ap::cli::profiles()) {
     if (p.add_commands != nullptr) p.add_commands(app);

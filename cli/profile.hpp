@@ -40,6 +40,15 @@ struct SimBoardArgs {
   int idle_s = 600;
 };
 
+// `axisproof panel` (docs/panel.md): the operator's web panel over the DDS bus.
+struct PanelArgs {
+  std::string target = "host";  // host: boards in-process; qemu: the profile's image runs them
+  unsigned boards = 1;
+  int port = 8080;              // 0: any free port (printed)
+  long long domain = -1;        // -1: claim a free one; with attach: the domain the boards are on
+  bool attach = false;          // boards already on the bus (a `sim board` in another process)
+};
+
 struct Profile {
   // From the declaration (profiles/<name>.cmake); the adapter leaves them empty.
   std::string_view name;   // the --profile value, the ctest label, the mutants' Profile:
@@ -67,6 +76,8 @@ struct Profile {
   // scenarios/<name>).
   int (*sim_run)(const SimRunArgs&) = nullptr;
   int (*sim_board)(const SimBoardArgs&) = nullptr;
+  // The operator's panel (nullptr: the profile has none yet).
+  int (*panel)(const PanelArgs&) = nullptr;
 
   // Proofs: its obligations, and the tests (a ctest -E regex) that prove exactly those
   // obligations once more, module by module; the gate's proofs stage stands for them.

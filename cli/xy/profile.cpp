@@ -172,12 +172,6 @@ int sim_board(const SimBoardArgs& a) {
   });
 }
 
-// The XY board's QEMU image (docs/qemu.md), built in the m4 tree first if needed.
-std::string qemu_image() {
-  if (!ensure_built("m4", {"ap_xy_qemu"}, true)) throw std::runtime_error("building the QEMU image (m4 preset) failed");
-  return build_dir("m4") + "/firmware/xy/ap_xy_qemu.elf";
-}
-
 int sim_run(const SimRunArgs& a) {
   return sim_run_main([&]() -> SimRunVerdict {
     sim::xy::scenario::Scenario s = sim::xy::scenario::parse_file(a.scenario);
@@ -187,7 +181,7 @@ int sim_run(const SimRunArgs& a) {
     o.out_root = a.out_root;
     if (a.target == "qemu") {
       if (a.join) throw std::runtime_error("--target qemu runs its own boards: no --join");
-      o.qemu_image = qemu_image();
+      o.qemu_image = xy_qemu_image();
     } else if (a.target != "host") {
       throw std::runtime_error("--target " + a.target + ": host or qemu");
     }
@@ -201,6 +195,13 @@ int sim_run(const SimRunArgs& a) {
 }  // namespace
 }  // namespace profile_xy
 
+// The XY board's QEMU image (docs/qemu.md), built in the m4 tree first if needed.
+std::string xy_qemu_image() {
+  if (!ensure_built("m4", {"ap_xy_qemu"}, true)) throw std::runtime_error("building the QEMU image (m4 preset) failed");
+  return build_dir("m4") + "/firmware/xy/ap_xy_qemu.elf";
+}
+
+
 // Its adapters; the declaration (profiles/xy.cmake) fills in the rest of its entry.
 Profile ap_profile_xy() {
   Profile p;
@@ -210,6 +211,7 @@ Profile ap_profile_xy() {
   p.doc = &profile_xy::doc;
   p.sim_run = &profile_xy::sim_run;
   p.sim_board = &profile_xy::sim_board;
+  p.panel = &xy_panel;
   p.obligations = &model::smt::xy_obligations;
   p.registry_tests =
       "^(tmc2130_proof\\.every_field_obligation_is_proved|smt_proof\\.(axis|timer|storage)_obligations_proved|(Interp|Scurve)"

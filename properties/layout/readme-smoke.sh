@@ -46,7 +46,7 @@ case $key in
   every_command_has_a_smoke)
     known=" axisproof-gate axisproof-test axisproof-prove axisproof-fuzz axisproof-sim axisproof-frame axisproof-regs
             axisproof-gcode axisproof-bench ci-mutate ci-nightly-fuzz ci-coverage ci-m4-build ci-fresh-machine
-            ci-compare-gate-results ci-check-workflows "
+            ci-compare-gate-results ci-check-workflows axisproof-panel "
     known=" $(echo $known) "
     n=0
     for k in $(readme_keys); do
@@ -116,6 +116,21 @@ case $key in
     expect 0 'goto' ./axisproof frame decode "$frame"
     need_default
     expect 0 'goto' ./axisproof frame decode --profile "$default" "$frame" ;;
+  axisproof-panel)
+    # The panel starts, serves its page and the codec's tables, and ends on SIGTERM
+    # (docs/panel.md); the browser tests are in the default profile's properties folder.
+    ./axisproof panel --port 0 >"$tmp/panel.out" 2>&1 &
+    pid=$!
+    for _ in $(seq 1 300); do grep -q 'http://127.0.0.1:' "$tmp/panel.out" && break; sleep 0.2; done
+    url=$(grep -oE 'http://127\.0\.0\.1:[0-9]+/' "$tmp/panel.out" | head -1)
+    [[ -n $url ]] || { kill "$pid"; fail "no URL printed: $(cat "$tmp/panel.out")"; }
+    get() { python3 -c 'import sys, urllib.request; print(urllib.request.urlopen(sys.argv[1], timeout=10).read().decode())' "$1"; }
+    expect 0 'Automatic absolute' get "$url"
+    expect 0 '"key":"goto"' get "${url}api/info"
+    kill -TERM "$pid"
+    wait "$pid"
+    rc=$?
+    [[ $rc -eq 0 ]] || fail "axisproof panel exited $rc after SIGTERM" ;;
   axisproof-regs)
     expect 0 'IHOLD_IRUN' ./axisproof regs
     expect 0 '^register,address,access,field,mask,shift,width,signed' ./axisproof regs --format csv

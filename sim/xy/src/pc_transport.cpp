@@ -39,7 +39,7 @@ void connect(const Boards& boards) {
 
 std::string env(PcContext& pc, BoardPc& b, const std::string& line, std::int64_t t) {
   const std::vector<std::uint8_t> bytes(line.begin(), line.end());
-  const std::uint64_t seq = b.ep->send(bytes, static_cast<std::uint64_t>(t), kFlagEnv);
+  const std::uint64_t seq = b.ep->send(bytes, static_cast<std::uint64_t>(t), dds::kFlagEnv);
   ++pc.round_trips;
   const dds::EchoSample e = wait_echo(b, seq);
   std::string reply(e.bytes.begin(), e.bytes.end());

@@ -64,10 +64,10 @@ class LockstepLink {
     }
   }
 
-  // An environment command (serve_loop.hpp kFlagEnv) and the board's text reply.
+  // An environment command (dds::kFlagEnv) and the board's text reply.
   std::string env(const std::string& text, std::int64_t t) {
     const dds::EchoSample e =
-        flagged({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, t, kFlagEnv);
+        flagged({reinterpret_cast<const std::uint8_t*>(text.data()), text.size()}, t, dds::kFlagEnv);
     return {e.bytes.begin(), e.bytes.end()};
   }
 

@@ -14,10 +14,6 @@
 
 namespace ap::sim {
 
-// Bus Command flag of a harness ("environment") command: bytes are a text line for the
-// board's env(), the echo's bytes its text reply; the board's clock does not move.
-inline constexpr std::uint32_t kFlagEnv = 0x100;
-
 // `board` provides finish() (write its outputs), env(text) -> reply text, and the profile's
 // `step(cmd)` runs a plain command (advance to its time, feed its bytes) and returns the bytes
 // the board's UART sent; `telemetry()` is the sample each echo carries. Returns 0 after a
@@ -40,7 +36,7 @@ int serve_loop(dds::BoardEndpoint& ep, Board& board, std::chrono::milliseconds i
       ep.echo(*cmd, {}, telemetry());
       return 0;
     }
-    if ((cmd->flags & kFlagEnv) != 0U) {
+    if ((cmd->flags & dds::kFlagEnv) != 0U) {
       std::string reply = board.env(std::string(cmd->bytes.begin(), cmd->bytes.end()));
       if (reply.size() > dds::kFrameMax) reply.resize(dds::kFrameMax);
       const std::vector<std::uint8_t> bytes(reply.begin(), reply.end());

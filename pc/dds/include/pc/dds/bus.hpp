@@ -26,6 +26,9 @@ namespace ap::dds {
 inline constexpr std::size_t kFrameMax = 128;   // ap_bus::FRAME_MAX in idl/ApBus.idl
 inline constexpr std::uint32_t kFlagShutdown = 1;
 inline constexpr std::uint32_t kFlagRealtime = 2;
+// A harness ("environment") command: the bytes are a text line for the board's env(), the
+// echo's bytes its text reply; the board's clock does not move (docs/sim.md).
+inline constexpr std::uint32_t kFlagEnv = 0x100;
 
 // Topic names (docs/dds.md has the QoS of each).
 inline constexpr const char* kCommandTopic = "ap_command";

@@ -1,0 +1,47 @@
+// axisproof panel: the operator's web panel of a profile (docs/panel.md). The profile's
+// adapter starts (or attaches to) its boards and serves the page; this file only reads the
+// arguments and turns Ctrl-C into an orderly stop.
+#include <csignal>
+#include <cstdio>
+
+#include "cli.hpp"
+#include "profile.hpp"
+
+namespace ap::cli {
+
+namespace {
+volatile std::sig_atomic_t g_panel_stop = 0;
+void on_signal(int) { g_panel_stop = 1; }
+}  // namespace
+
+bool panel_stop_requested() { return g_panel_stop != 0; }
+
+void add_panel(CLI::App& app) {
+  auto* sub = app.add_subcommand("panel", "Serve the operator's web panel on localhost, driving simulated boards");
+  static PanelArgs a;
+  static std::string profile;
+  sub->add_option("--target", a.target, "host (the core in-process) or qemu (the profile's image)")->default_val("host");
+  sub->add_option("--boards", a.boards, "Boards to start (ids 0..N-1)")->default_val(1)->check(CLI::Range(1, 16));
+  sub->add_option("--port", a.port, "HTTP port on 127.0.0.1 (0: any free one)")->default_val(8080)->check(CLI::Range(0, 65535));
+  sub->add_option("--domain", a.domain, "DDS domain (default: a free one; with --attach: the boards' domain)");
+  sub->add_flag("--attach", a.attach, "Use boards already on the bus (e.g. `axisproof sim board --domain D`)");
+  add_profile_option(sub, profile);
+  sub->final_callback([] {
+    const Profile* p = find_profile(profile);
+    if (p->panel == nullptr) {
+      std::fprintf(stderr, "axisproof panel: profile %s has no panel yet (docs/panel.md)\n", profile.c_str());
+      exit_status() = 2;
+      return;
+    }
+    if (a.attach && a.domain < 0) {
+      std::fprintf(stderr, "axisproof panel: --attach needs --domain\n");
+      exit_status() = 2;
+      return;
+    }
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    exit_status() = p->panel(a);
+  });
+}
+
+}  // namespace ap::cli

@@ -1,0 +1,86 @@
+// axisproof panel --profile xy (docs/panel.md): the boards on their own threads (unless
+// attached to boards already on the bus), the panel's session on the PC side of the same DDS
+// domain, and the web page until Ctrl-C. The time from start to a usable page is printed.
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "pc/dds/bus.hpp"
+#include "pc/dds/domain.hpp"
+#include "pc/xy/panel/server.hpp"
+#include "pc/xy/panel/session.hpp"
+#include "sim/xy/board.hpp"
+#include "sim/xy/run.hpp"
+
+namespace ap::cli {
+
+int xy_panel(const PanelArgs& a) {
+  const auto started = std::chrono::steady_clock::now();
+  try {
+    if (a.target != "host" && a.target != "qemu") throw std::runtime_error("--target " + a.target + ": host or qemu");
+    if (a.attach && a.target != "host") throw std::runtime_error("--attach uses boards that run elsewhere: no --target");
+    dds::use_loopback_config(false);
+    std::optional<dds::DomainLease> lease;
+    const std::uint32_t domain =
+        dds::fixed_or_claimed(a.domain >= 0 ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(a.domain)) : std::nullopt, lease);
+    const std::string image = a.target == "qemu" ? xy_qemu_image() : std::string();
+
+    std::atomic<bool> stop{false};
+    std::vector<std::thread> boards;
+    dds::ParticipantPtr pp;
+    if (!a.attach) {
+      pp = dds::make_participant(domain);
+      for (std::uint32_t b = 0; b < a.boards; ++b) {
+        boards.emplace_back([&, b] {
+          try {
+            sim::xy::BoardOptions o;
+            o.id = b;
+            o.qemu_image = image;
+            (void)sim::xy::serve_board(pp, o, std::chrono::hours(24), &stop);
+          } catch (const std::exception& e) {
+            std::fprintf(stderr, "axisproof panel: board %u: %s\n", b, e.what());
+          }
+        });
+      }
+    }
+    xy_panel::Options so;
+    so.domain = domain;
+    so.boards.clear();
+    for (std::uint32_t b = 0; b < a.boards; ++b) so.boards.push_back(b);
+    int rc = 0;
+    {
+      xy_panel::Session session(so);
+      xy_panel::ServerOptions ho;
+      ho.port = a.port;
+      ho.assets_dir = AP_XY_PANEL_ASSETS;
+      ho.title = "axisproof panel: XY platform (seed 000)";
+      const bool ok = xy_panel::serve(
+          session, ho,
+          [&](int port) {
+            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            std::printf("axisproof panel: http://127.0.0.1:%d/ (profile xy, %u board(s) %s on DDS domain %u; ready in %.2f s; Ctrl-C ends)\n",
+                        port, a.boards, a.attach ? "attached" : (a.target == "qemu" ? "in QEMU" : "in-process"), domain, s);
+            std::fflush(stdout);
+          },
+          [] { return panel_stop_requested(); });
+      if (!ok) {
+        std::fprintf(stderr, "axisproof panel: cannot listen on 127.0.0.1:%d\n", a.port);
+        rc = 1;
+      }
+      session.stop();
+    }
+    stop = true;
+    for (auto& t : boards) t.join();
+    return rc;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "axisproof panel: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace ap::cli

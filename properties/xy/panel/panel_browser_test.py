@@ -1,0 +1,284 @@
+#!/usr/bin/env python3
+"""The XY panel in a real browser (docs/panel.md "Tests"): `axisproof panel` started on a free
+port with one simulated board, Debian's chromium headless driven through selenium. What each test
+expects comes from the operator's input and the thesis (seed-000.md §5, chapter 8 of the
+original): a target typed in millimetres is where the carriage must end, a held arrow key jogs
+and its release stops; the board's own position (the simulator's, `board_usteps` in /api/state,
+which the page never shows) is the trace that proves the motion, not the page's text alone.
+
+usage: panel_browser_test.py AXISPROOF OUT_DIR   (screenshots go to OUT_DIR)
+"""
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+import unittest
+import urllib.error
+import urllib.request
+
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
+from selenium.webdriver.common.by import By
+from selenium.webdriver.common.keys import Keys
+
+AXISPROOF, OUT = sys.argv[1], sys.argv[2]
+# The simulated machine: 2 mm lead, 200 full steps, 16 microsteps (docs/sim.md "Machine",
+# thesis Tab. 4-1), so 1 mm is 1600 microsteps.
+USTEPS_PER_MM = 1600
+
+
+class Panel:
+    """One `axisproof panel` process and one headless chromium on its page."""
+
+    def __init__(self):
+        self.proc = subprocess.Popen([AXISPROOF, "panel", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                     text=True)
+        t0 = time.monotonic()
+        line = self.proc.stdout.readline()
+        m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+        if not m:
+            self.proc.kill()
+            raise RuntimeError("axisproof panel did not start: " + line + self.proc.stdout.read())
+        self.url = "http://127.0.0.1:%s/" % m.group(1)
+        opts = webdriver.ChromeOptions()
+        opts.binary_location = "/usr/bin/chromium"
+        for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,1100"):
+            opts.add_argument(a)
+        self.driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=opts)
+        self.driver.get(self.url)
+        self.wait(lambda: self.text("ble-indicator") == "not connected", "the page to find the board")
+        self.ready_s = time.monotonic() - t0
+
+    def close(self):
+        self.driver.quit()
+        self.proc.terminate()
+        try:
+            self.proc.wait(10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+        self.proc.stdout.close()
+
+    # ---- helpers ----
+    def el(self, id_):
+        return self.driver.find_element(By.ID, id_)
+
+    def text(self, id_):
+        return self.el(id_).text
+
+    def click(self, id_):
+        self.el(id_).click()
+
+    def type(self, id_, value):
+        e = self.el(id_)
+        e.clear()
+        e.send_keys(value)
+
+    def wait(self, cond, what, timeout=20.0):
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            try:
+                if cond():
+                    return
+            except Exception:  # an element re-rendered under us: try again
+                pass
+            time.sleep(0.05)
+        raise AssertionError("timed out waiting for " + what)
+
+    def api(self, path, body=None):
+        req = urllib.request.Request(self.url + path.lstrip("/"), data=None if body is None else json.dumps(body).encode(),
+                                     headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=10) as r:
+                return r.status, json.loads(r.read())
+        except urllib.error.HTTPError as e:
+            return e.code, json.loads(e.read())
+
+    def board(self):
+        return self.api("/api/state")[1]["boards"][0]
+
+    def usteps(self, axis):
+        return self.board()["axes"][axis]["board_usteps"]
+
+    def outcomes(self):
+        return [(li.get_attribute("data-command"), li.get_attribute("data-outcome"))
+                for li in self.driver.find_elements(By.CSS_SELECTOR, "#outcomes li")]
+
+    def connect(self):
+        self.click("connect")
+        self.wait(lambda: self.text("ble-indicator") == "connected", "the connection")
+
+    def menu(self, name):
+        self.driver.find_element(By.CSS_SELECTOR, ".menu[data-panel='%s']" % name).click()
+
+    def shot(self, name):
+        os.makedirs(OUT, exist_ok=True)
+        self.driver.save_screenshot(os.path.join(OUT, name + ".png"))
+
+
+class XyPanel(unittest.TestCase):
+    def setUp(self):
+        self.p = Panel()
+        self.p.connect()
+
+    def tearDown(self):
+        self.p.close()
+
+    def wait_rest(self, axis):
+        """Until the board's carriage on `axis` stands (two samples 300 ms apart agree)."""
+        last = [None]
+
+        def still():
+            now = self.p.usteps(axis)
+            same = now == last[0]
+            last[0] = now
+            return same
+        self.p.wait(lambda: (time.sleep(0.3) or still()), "axis %d to stand" % axis)
+
+    def test_held_arrow_key_jogs_and_release_stops(self):
+        x0 = self.p.usteps(0)
+        chain = ActionChains(self.p.driver)
+        chain.key_down(Keys.ARROW_RIGHT).perform()
+        self.p.wait(lambda: self.p.usteps(0) > x0 + USTEPS_PER_MM // 10, "X to move on a held arrow key")
+        self.assertIn(self.p.el("x-status").get_attribute("data-status"), ("accel", "const"))
+        ActionChains(self.p.driver).key_up(Keys.ARROW_RIGHT).perform()
+        self.wait_rest(0)
+        stopped_at = self.p.usteps(0)
+        time.sleep(1.0)
+        self.assertEqual(self.p.usteps(0), stopped_at, "the carriage moved on after the key was released")
+        self.assertGreater(stopped_at, x0)
+        self.p.shot("panel-manual")
+
+    def test_two_held_keys_move_both_axes_at_once(self):
+        x0, y0 = self.p.usteps(0), self.p.usteps(1)
+        ActionChains(self.p.driver).key_down(Keys.ARROW_RIGHT).key_down(Keys.ARROW_UP).perform()
+        self.p.wait(lambda: self.p.usteps(0) > x0 + 200 and self.p.usteps(1) > y0 + 200, "both axes to move")
+        ActionChains(self.p.driver).key_up(Keys.ARROW_RIGHT).key_up(Keys.ARROW_UP).perform()
+        self.wait_rest(0)
+        self.wait_rest(1)
+
+    def test_absolute_then_relative_move_reach_their_targets(self):
+        self.p.menu("absolute")
+        self.p.type("abs-x", "12.5")
+        self.p.type("abs-y", "7.25")
+        self.p.click("abs-go")
+        self.p.wait(lambda: self.p.text("x-pos") == "12.500" and self.p.text("y-pos") == "7.250", "the absolute target", 30)
+        self.p.shot("panel-absolute")
+        self.assertEqual(self.p.usteps(0), int(12.5 * USTEPS_PER_MM))
+        self.assertEqual(self.p.usteps(1), int(7.25 * USTEPS_PER_MM))
+        self.p.menu("relative")
+        self.p.type("rel-x", "2.5")
+        self.p.type("rel-y", "-1")
+        self.p.click("rel-go")
+        self.p.wait(lambda: self.p.text("x-pos") == "15.000" and self.p.text("y-pos") == "6.250", "the relative target", 30)
+        self.assertEqual(self.p.usteps(0), 15 * USTEPS_PER_MM)
+        self.assertEqual(self.p.usteps(1), int(6.25 * USTEPS_PER_MM))
+        self.p.shot("panel-relative")
+        done = [o for o in self.p.outcomes() if o[1] == "done"]
+        self.assertGreaterEqual(len([o for o in done if o[0] == "goto"]), 2)
+        self.assertGreaterEqual(len([o for o in done if o[0] == "move"]), 2)
+
+    def test_home_references_the_axis(self):
+        self.p.menu("relative")
+        self.p.type("rel-x", "3")
+        self.p.type("rel-y", "0")
+        self.p.click("rel-go")
+        self.p.wait(lambda: self.p.text("x-pos") == "3.000", "the move before homing")
+        self.p.menu("manual")
+        self.p.click("home-x")
+        self.p.wait(lambda: self.p.el("x-status").get_attribute("data-status") == "homing", "homing to show")
+        self.p.wait(lambda: self.p.text("x-pos") == "0.000" and self.p.el("x-status").get_attribute("data-status") == "reached",
+                    "homing to end at 0", 30)
+        self.assertIn(("home", "done"), self.p.outcomes())
+
+    def test_dynamics_are_saved_and_survive_a_reboot(self):
+        self.p.menu("dynamics")
+        self.p.type("dyn-fast", "8")
+        self.p.type("dyn-slow", "1.5")
+        self.p.type("dyn-accel", "15")
+        self.p.click("dyn-save")
+        self.p.wait(lambda: self.p.text("p-fast") == "8.000" and self.p.text("p-slow") == "1.500" and self.p.text("p-accel") == "15.000",
+                    "the stored dynamics")
+        self.p.shot("panel-dynamics")
+        status, r = self.p.api("/api/env", {"board": 0, "line": "reboot"})
+        self.assertEqual(status, 200, r)
+        # The parameter subscriber reads them again from the rebooted board within a few frames.
+        time.sleep(2.0)
+        self.assertEqual((self.p.text("p-fast"), self.p.text("p-slow"), self.p.text("p-accel")), ("8.000", "1.500", "15.000"))
+
+    def test_sleep_locks_the_control_buttons(self):
+        self.p.click("sleep")
+        self.p.wait(lambda: self.p.el("x-status").get_attribute("data-status") == "sleeping", "the unit to sleep")
+        self.p.wait(lambda: not self.p.el("abs-go").is_enabled() and not self.p.el("home-x").is_enabled(), "the lock")
+        self.assertEqual(self.p.text("sleep"), "Wake")
+        self.p.shot("panel-static-sleeping")
+        x0 = self.p.usteps(0)
+        ActionChains(self.p.driver).key_down(Keys.ARROW_RIGHT).perform()
+        time.sleep(0.5)
+        ActionChains(self.p.driver).key_up(Keys.ARROW_RIGHT).perform()
+        self.assertEqual(self.p.usteps(0), x0, "an arrow key moved a sleeping unit")
+        self.assertIn("sleeps", self.p.text("refusal"))
+        self.p.click("sleep")
+        self.p.wait(lambda: self.p.el("home-x").is_enabled(), "the wake")
+
+    def test_usb_plug_shows_blocked_and_the_commands_blocked_outcome(self):
+        self.p.el("info").click()
+        ActionChains(self.p.driver).key_down(Keys.SHIFT).send_keys("V").key_up(Keys.SHIFT).perform()
+        self.p.wait(lambda: self.p.el("dev").is_displayed(), "the developer extension on Shift+V")
+        self.p.click("dev-usb-on")
+        self.p.wait(lambda: "USB" in self.p.text("dev-reply") or "usb" in self.p.text("dev-reply"), "the USB plug")
+        self.p.menu("absolute")
+        self.p.type("abs-x", "5")
+        self.p.type("abs-y", "5")
+        self.p.click("abs-go")
+        self.p.wait(lambda: ("goto", "blocked") in self.p.outcomes(), "the blocked outcome")
+        self.p.wait(lambda: self.p.text("x-status") == "blocked: USB connected", "the blocked status")
+        self.assertEqual(self.p.usteps(0), 0)
+        self.p.shot("panel-blocked-usb")
+
+    def test_simulated_echo_updates_the_info_panel(self):
+        ActionChains(self.p.driver).key_down(Keys.SHIFT).send_keys("V").key_up(Keys.SHIFT).perform()
+        self.p.wait(lambda: self.p.el("dev").is_displayed(), "the developer extension")
+        from selenium.webdriver.support.ui import Select
+        Select(self.p.el("dev-status")).select_by_value("blk_charger")
+        self.p.type("dev-pos", "42.5")
+        self.p.click("dev-echo")
+        self.p.wait(lambda: self.p.text("x-status") == "blocked: charger connected" and self.p.text("y-status") ==
+                    "blocked: charger connected" and self.p.text("x-pos") == "42.500", "the simulated echo")
+        self.p.shot("panel-developer")
+
+    def test_bad_input_is_refused_in_the_page_and_never_sent(self):
+        self.p.menu("absolute")
+        before = len(self.p.outcomes())
+        refused_before = self.p.api("/api/state")[1]["refused_requests"]
+        cases = [("abc", "not a number"), ("-5", "outside"), ("1000", "outside"), ("", "empty"), ("1e3", "not a number")]
+        for value, why in cases:
+            self.p.type("abs-x", value)
+            self.p.type("abs-y", "1")
+            self.p.click("abs-go")
+            self.p.wait(lambda: why in self.p.text("refusal"), "the refusal of '%s'" % value)
+        # Over-long: the field takes 12 characters; a longer value set by script is refused too.
+        self.p.driver.execute_script("document.getElementById('abs-x').value = '1234567890.123';")
+        self.p.click("abs-go")
+        self.p.wait(lambda: "longer than 12" in self.p.text("refusal"), "the over-long refusal")
+        time.sleep(0.5)
+        self.assertEqual(len(self.p.outcomes()), before, "a refused value produced a command")
+        self.assertEqual(self.p.api("/api/state")[1]["refused_requests"], refused_before,
+                         "the page sent a value it should have refused itself")
+        self.assertEqual(self.p.usteps(0), 0)
+        # The server checks again: a request the page would never send is refused with its reason.
+        for body, why in [({"board": 0, "part": "x", "key": "goto", "data": "12"}, "not an integer"),
+                          ({"board": 0, "part": "x", "key": "goto", "data": -1}, "outside"),
+                          ({"board": 0, "part": "x", "key": "pitch", "data": 2000}, "not an operator command"),
+                          ({"board": 0, "part": "q", "key": "goto", "data": 1}, "part"),
+                          ({"board": 0, "part": "x", "key": "goto" * 10, "data": 1}, "longer")]:
+            status, r = self.p.api("/api/command", body)
+            self.assertEqual(status, 400, body)
+            self.assertIn(why, r["error"])
+        self.assertEqual(self.p.usteps(0), 0)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=[sys.argv[0], "-v"])
