@@ -24,6 +24,8 @@ void add_panel(CLI::App& app) {
   sub->add_option("--boards", a.boards, "Boards to start (ids 0..N-1)")->default_val(1)->check(CLI::Range(1, 16));
   sub->add_option("--port", a.port, "HTTP port on 127.0.0.1 (0: any free one)")->default_val(8080)->check(CLI::Range(0, 65535));
   sub->add_option("--domain", a.domain, "DDS domain (default: a free one; with --attach: the boards' domain)");
+  sub->add_option("--faults", a.faults,
+                  "A link storm under the panel: scenario fault lines joined by ';', e.g. 'drop 30 %; corrupt 10 %' (docs/scenarios.md)");
   sub->add_flag("--attach", a.attach, "Use boards already on the bus (e.g. `axisproof sim board --domain D`)");
   add_profile_option(sub, profile);
   sub->final_callback([] {

@@ -47,6 +47,7 @@ struct PanelArgs {
   int port = 8080;              // 0: any free port (printed)
   long long domain = -1;        // -1: claim a free one; with attach: the domain the boards are on
   bool attach = false;          // boards already on the bus (a `sim board` in another process)
+  std::string faults;           // the fault link under the panel: scenario `fault` lines, ';' between
 };
 
 struct Profile {

@@ -33,8 +33,8 @@ USTEPS_PER_MM = 1600
 class Panel:
     """One `axisproof panel` process and one headless chromium on its page."""
 
-    def __init__(self):
-        self.proc = subprocess.Popen([AXISPROOF, "panel", "--port", "0"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    def __init__(self, *args):
+        self.proc = subprocess.Popen([AXISPROOF, "panel", "--port", "0", *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                      text=True)
         t0 = time.monotonic()
         line = self.proc.stdout.readline()
@@ -278,6 +278,97 @@ class XyPanel(unittest.TestCase):
             self.assertEqual(status, 400, body)
             self.assertIn(why, r["error"])
         self.assertEqual(self.p.usteps(0), 0)
+
+
+class XyPanelOverABadLink(unittest.TestCase):
+    """A link storm under the panel: the fault link of docs/sim.md between the session and the
+    bus drops, corrupts, duplicates and delays frames both ways."""
+
+    def test_storm_shows_retries_and_every_command_lands_once(self):
+        p = Panel("--faults", "drop 30 %; corrupt 10 %; duplicate 10 %; delay 20 ms")
+        try:
+            p.connect()
+            p.menu("relative")
+            p.type("rel-y", "0")
+            for k in range(1, 5):
+                p.type("rel-x", "1")
+                p.click("rel-go")
+                # Relative moves one after another, each from where the last one ended: a move
+                # run twice would leave the carriage a millimetre further.
+                p.wait(lambda: p.text("x-pos") == "%d.000" % k and p.el("x-status").get_attribute("data-status") == "reached",
+                       "move %d" % k, 60)
+            time.sleep(1.0)
+            self.assertEqual(p.usteps(0), 4 * USTEPS_PER_MM)
+            moves = [o for o in p.outcomes() if o[0] == "move"]
+            self.assertEqual(moves, [("move", "done")] * 4)
+            m = re.search(r"(\d+) frames sent, (\d+) sent again", p.text("link-stats"))
+            self.assertTrue(m, p.text("link-stats"))
+            self.assertGreater(int(m.group(2)), 0, "no retry shown under a 30 % drop")
+            p.shot("panel-link-storm")
+        finally:
+            p.close()
+
+
+class XyPanelSessions(unittest.TestCase):
+    def test_out_of_range_indicator(self):
+        p = Panel()
+        try:
+            p.connect()
+            # The BLE module leaves its data session (thesis Tab. 7-2): the board takes no frame
+            # and answers none, so the indicator must turn.
+            self.assertEqual(p.api("/api/env", {"board": 0, "line": "ble standby"})[0], 200)
+            p.wait(lambda: p.text("ble-indicator") == "out of range", "the out-of-range indicator")
+            p.shot("panel-out-of-range")
+            self.assertEqual(p.api("/api/env", {"board": 0, "line": "ble session"})[0], 200)
+            p.wait(lambda: p.text("ble-indicator") == "connected", "the unit back in range")
+        finally:
+            p.close()
+
+    def test_second_tab_and_a_tab_closed_mid_command(self):
+        p = Panel()
+        try:
+            p.connect()
+            first = p.driver.current_window_handle
+            p.driver.switch_to.new_window("tab")
+            p.driver.get(p.url)
+            p.wait(lambda: p.text("ble-indicator") == "connected", "the second tab to show the connection")
+            p.menu("absolute")
+            p.type("abs-x", "20")
+            p.type("abs-y", "0")
+            p.click("abs-go")
+            p.driver.close()  # the tab goes while its command is on its way
+            p.driver.switch_to.window(first)
+            # The command still lands, once, and the first tab shows its outcome and the result.
+            p.wait(lambda: p.text("x-pos") == "20.000", "the closed tab's command to run", 30)
+            p.wait(lambda: ("goto", "done") in p.outcomes(), "its outcome in the other tab")
+            self.assertEqual(p.usteps(0), 20 * USTEPS_PER_MM)
+        finally:
+            p.close()
+
+    def test_attached_board_that_leaves_the_bus(self):
+        domain = 200 + os.getpid() % 30
+        board = subprocess.Popen([AXISPROOF, "sim", "board", "--domain", str(domain), "--idle-timeout", "120"],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        p = None
+        try:
+            p = Panel("--attach", "--domain", str(domain))
+            p.connect()
+            p.menu("absolute")
+            p.type("abs-x", "2")
+            p.type("abs-y", "1")
+            p.click("abs-go")
+            p.wait(lambda: p.text("x-pos") == "2.000", "the attached board to move", 30)
+            board.kill()
+            board.wait()
+            p.wait(lambda: p.text("ble-indicator") == "board not on the bus", "the board's departure to show", 30)
+            events = " ".join(li.text for li in p.driver.find_elements(By.CSS_SELECTOR, "#events li"))
+            self.assertIn("BleDeviceDisconnectedEvent", events)
+        finally:
+            if p:
+                p.close()
+            if board.poll() is None:
+                board.kill()
+                board.wait()
 
 
 if __name__ == "__main__":

@@ -160,6 +160,9 @@ function render(s) {
   else if (!b.connected) { ind.textContent = "not connected"; ind.className = "ind off"; }
   else if (!b.in_range) { ind.textContent = "out of range"; ind.className = "ind warn"; }
   else { ind.textContent = "connected"; ind.className = "ind on"; }
+  $("link-stats").textContent = b && b.connected && b.link
+    ? "link: " + b.link.sent + " frames sent, " + b.link.retransmissions + " sent again" + (b.link.link_down ? ", link down" : "")
+    : "";
   if (b && b.connected && b.axes) {
     for (const [i, n] of [[0, "x"], [1, "y"]]) {
       const a = b.axes[i];

@@ -94,6 +94,7 @@ struct Session::Board {
   std::uint32_t id = 0;
   std::unique_ptr<dds::PcEndpoint> ep;
   std::unique_ptr<xy_client::Client> client;
+  std::unique_ptr<LinkFilter> link;
   bool on_bus = false;
   bool connected = false;
   bool in_range = false;
@@ -114,6 +115,7 @@ Session::Session(Options o) : opt_(std::move(o)) {
     auto b = std::make_unique<Board>();
     b->id = id;
     b->ep = std::make_unique<dds::PcEndpoint>(opt_.domain, id);
+    if (opt_.link) b->link = opt_.link(id);
     boards_.push_back(std::move(b));
   }
   state_ = json::object();
@@ -389,6 +391,7 @@ void Session::step(std::int64_t t) {
                                                : xy_frame::SubscriberSlot{SubscriberId::Param, static_cast<std::uint8_t>(kShownParams[turn])};
       if (auto text = b.client->poll(t, ex)) bytes = *text;
     }
+    if (b.link) bytes = b.link->to_board(t, bytes);
     const std::vector<std::uint8_t> out(bytes.begin(), bytes.end());
     const std::uint64_t seq = b.ep->send(out, static_cast<std::uint64_t>(t));
     std::optional<dds::EchoSample> echo;
@@ -405,8 +408,10 @@ void Session::step(std::int64_t t) {
       continue;
     }
     b.truth = echo->telemetry;
+    std::string back(echo->bytes.begin(), echo->bytes.end());
+    if (b.link) back = b.link->to_pc(t, back);
     if (b.connected) {
-      for (const auto& ev : b.client->receive(std::span<const std::uint8_t>(echo->bytes), t)) {
+      for (const auto& ev : b.client->receive(back, t)) {
         if (ev.kind == xy_client::EchoKind::Rejected || ev.kind == xy_client::EchoKind::Malformed) continue;
         b.axis = {ev.echo.x, ev.echo.y};
         if (b.last_answer_us) b.prev_answer_us = *b.last_answer_us;

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <future>
 #include <memory>
 #include <mutex>
@@ -22,12 +23,24 @@
 
 namespace ap::xy_panel {
 
+// Something between a board's client and the bus, in each direction: `axisproof panel --faults`
+// puts the simulator's fault link here (a link storm under the panel, docs/panel.md). It takes
+// the bytes entering at t and returns those leaving at t.
+class LinkFilter {
+ public:
+  virtual ~LinkFilter() = default;
+  virtual std::string to_board(std::int64_t t_us, const std::string& bytes) = 0;
+  virtual std::string to_pc(std::int64_t t_us, const std::string& bytes) = 0;
+};
+
 struct Options {
   std::uint32_t domain = 0;
   std::vector<std::uint32_t> boards{0};  // the board ids to look for on the bus
   std::int64_t period_us = 20'000;        // one command frame per board and period
   // Answers older than this show the unit as out of range (thesis §8.2: the BLE indicator).
   std::int64_t out_of_range_us = 600'000;
+  // Makes the link filter of a board; empty: the bytes pass unchanged.
+  std::function<std::unique_ptr<LinkFilter>(std::uint32_t board)> link;
 };
 
 // What the page asks for. `part`: x, y or unit; `key`: a command key of the codec table
