@@ -12,7 +12,8 @@
 #include "commands.hpp"
 #include "pc/dds/bus.hpp"
 #include "pc/dds/domain.hpp"
-#include "pc/xy/panel/server.hpp"
+#include "pc/web/server.hpp"
+#include "pc/xy/panel/routes.hpp"
 #include "pc/xy/panel/session.hpp"
 #include "protocol/xy/codec/layout.hpp"
 #include "sim/xy/board.hpp"
@@ -107,12 +108,8 @@ int xy_panel(const PanelArgs& a) {
     int rc = 0;
     {
       xy_panel::Session session(so);
-      xy_panel::ServerOptions ho;
-      ho.port = a.port;
-      ho.assets_dir = AP_XY_PANEL_ASSETS;
-      ho.title = "axisproof panel: XY platform (seed 000)";
-      const bool ok = xy_panel::serve(
-          session, ho,
+      const bool ok = web::serve(
+          xy_panel::routes(session, "axisproof panel: XY platform (seed 000)"), xy_panel::web_options(a.port),
           [&](int port) {
             const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
             std::printf("axisproof panel: http://127.0.0.1:%d/ (profile xy, %u board(s) %s on DDS domain %u%s; ready in %.2f s; Ctrl-C ends)\n",
