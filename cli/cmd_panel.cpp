@@ -1,8 +1,14 @@
 // axisproof panel: the operator's web panel of a profile (docs/panel.md). The profile's
 // adapter starts (or attaches to) its boards and serves the page; this file only reads the
 // arguments and turns Ctrl-C into an orderly stop.
+#include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "pc/dds/domain.hpp"
 
 #include "cli.hpp"
 #include "profile.hpp"
@@ -15,6 +21,46 @@ void on_signal(int) { g_panel_stop = 1; }
 }  // namespace
 
 bool panel_stop_requested() { return g_panel_stop != 0; }
+
+int panel_main(const PanelArgs& a, std::string_view label, const PanelBoard& board, const PanelServe& serve) {
+  const auto started = std::chrono::steady_clock::now();
+  try {
+    dds::use_loopback_config(false);
+    std::optional<dds::DomainLease> lease;
+    const std::uint32_t domain =
+        dds::fixed_or_claimed(a.domain >= 0 ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(a.domain)) : std::nullopt, lease);
+    std::atomic<bool> stop{false};
+    std::vector<std::thread> boards;
+    dds::ParticipantPtr pp;
+    if (!a.attach) {
+      pp = dds::make_participant(domain);
+      for (std::uint32_t b = 0; b < a.boards; ++b) {
+        boards.emplace_back([&, b] {
+          try {
+            board(pp, b, &stop);
+          } catch (const std::exception& e) {
+            std::fprintf(stderr, "axisproof panel: board %u: %s\n", b, e.what());
+          }
+        });
+      }
+    }
+    const bool ok = serve(domain, [&](int port) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      std::printf("axisproof panel: http://127.0.0.1:%d/ (profile %.*s, %u board(s) %s on DDS domain %u%s; ready in %.2f s; Ctrl-C ends)\n",
+                  port, static_cast<int>(label.size()), label.data(), a.boards,
+                  a.attach ? "attached" : (a.target == "qemu" ? "in QEMU" : "in-process"), domain,
+                  a.faults.empty() ? "" : ", faults on the link", s);
+      std::fflush(stdout);
+    });
+    if (!ok) std::fprintf(stderr, "axisproof panel: cannot listen on 127.0.0.1:%d\n", a.port);
+    stop = true;
+    for (auto& t : boards) t.join();
+    return ok ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "axisproof panel: %s\n", e.what());
+    return 1;
+  }
+}
 
 void add_panel(CLI::App& app) {
   auto* sub = app.add_subcommand("panel", "Serve the operator's web panel on localhost, driving simulated boards");

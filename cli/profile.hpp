@@ -9,6 +9,7 @@
 // fuzz_targets.txt (AP_PROFILE), its mutants sit in ci/mutants/<name>.
 #include <CLI/CLI.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -99,6 +100,15 @@ struct Profile {
 using BoardServer = std::function<int(const dds::ParticipantPtr&, std::uint32_t id, const std::string& out,
                                       std::chrono::seconds idle)>;
 int host_boards(const SimBoardArgs& a, std::string_view label, const BoardServer& serve);
+
+// `axisproof panel` for any profile (cmd_panel.cpp): claims the domain (or takes a.domain),
+// hosts a.boards boards on their own threads unless a.attach (`board` serves one until *stop),
+// then `serve(domain, ready)` runs the profile's session and web server until Ctrl-C, calling
+// `ready(port)` once it listens (the URL and the time since start are printed). Returns the exit
+// code: 0 after Ctrl-C, 1 when serving failed.
+using PanelBoard = std::function<void(const dds::ParticipantPtr&, std::uint32_t id, const std::atomic<bool>* stop)>;
+using PanelServe = std::function<bool(std::uint32_t domain, const std::function<void(int port)>& ready)>;
+int panel_main(const PanelArgs& a, std::string_view label, const PanelBoard& board, const PanelServe& serve);
 
 // `sim run` for any profile: `run` parses a.scenario, runs it and prints its report, and
 // returns its verdict; this prints where the outputs went and gives the exit code (0 pass,

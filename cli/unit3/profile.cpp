@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "commands.hpp"
 #include "core/unit3/board/unit.hpp"
 #include "models/unit3/obligations.hpp"
 #include "profile.hpp"
@@ -142,6 +143,7 @@ Profile ap_profile_unit3() {
   p.decode_stream = &profile_unit3::decode_stream;
   p.sim_run = &profile_unit3::sim_run;
   p.sim_board = &profile_unit3::sim_board;
+  p.panel = &unit3_panel;
   p.obligations = &model::smt::unit3_obligations;
   p.registry_tests = "^Unit3Proofs\\.EveryObligationIsProved$";
   return p;

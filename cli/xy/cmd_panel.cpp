@@ -1,6 +1,5 @@
-// axisproof panel --profile xy (docs/panel.md): the boards on their own threads (unless
-// attached to boards already on the bus), the panel's session on the PC side of the same DDS
-// domain, and the web page until Ctrl-C. The time from start to a usable page is printed.
+// axisproof panel --profile xy (docs/panel.md): its boards (in-process or the QEMU image), the
+// link storm of --faults, the panel's session and routes; panel_main does the rest.
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -11,7 +10,6 @@
 #include "cli.hpp"
 #include "commands.hpp"
 #include "pc/dds/bus.hpp"
-#include "pc/dds/domain.hpp"
 #include "pc/web/server.hpp"
 #include "pc/xy/panel/routes.hpp"
 #include "pc/xy/panel/session.hpp"
@@ -54,6 +52,7 @@ class FaultFilter : public xy_panel::LinkFilter {
 
 // "drop 30 %; corrupt 10 %" as a scenario's fault lines (docs/scenarios.md), checked by its parser.
 std::vector<sim::xy::scenario::Fault> parse_faults(const std::string& spec) {
+  if (spec.empty()) return {};
   std::string text = "scenario panel\nduration 1 s\n";
   std::size_t from = 0;
   while (from <= spec.size()) {
@@ -69,64 +68,33 @@ std::vector<sim::xy::scenario::Fault> parse_faults(const std::string& spec) {
 }  // namespace
 
 int xy_panel(const PanelArgs& a) {
-  const auto started = std::chrono::steady_clock::now();
   try {
     if (a.target != "host" && a.target != "qemu") throw std::runtime_error("--target " + a.target + ": host or qemu");
     if (a.attach && a.target != "host") throw std::runtime_error("--attach uses boards that run elsewhere: no --target");
-    dds::use_loopback_config(false);
-    std::optional<dds::DomainLease> lease;
-    const std::uint32_t domain =
-        dds::fixed_or_claimed(a.domain >= 0 ? std::optional<std::uint32_t>(static_cast<std::uint32_t>(a.domain)) : std::nullopt, lease);
     const std::string image = a.target == "qemu" ? xy_qemu_image() : std::string();
-
-    std::atomic<bool> stop{false};
-    std::vector<std::thread> boards;
-    dds::ParticipantPtr pp;
-    if (!a.attach) {
-      pp = dds::make_participant(domain);
-      for (std::uint32_t b = 0; b < a.boards; ++b) {
-        boards.emplace_back([&, b] {
-          try {
-            sim::xy::BoardOptions o;
-            o.id = b;
-            o.qemu_image = image;
-            (void)sim::xy::serve_board(pp, o, std::chrono::hours(24), &stop);
-          } catch (const std::exception& e) {
-            std::fprintf(stderr, "axisproof panel: board %u: %s\n", b, e.what());
+    const auto faults = parse_faults(a.faults);
+    return panel_main(
+        a, "xy",
+        [&](const dds::ParticipantPtr& pp, std::uint32_t id, const std::atomic<bool>* stop) {
+          sim::xy::BoardOptions o;
+          o.id = id;
+          o.qemu_image = image;
+          (void)sim::xy::serve_board(pp, o, std::chrono::hours(24), stop);
+        },
+        [&](std::uint32_t domain, const std::function<void(int)>& ready) {
+          xy_panel::Options so;
+          so.domain = domain;
+          so.boards.clear();
+          for (std::uint32_t b = 0; b < a.boards; ++b) so.boards.push_back(b);
+          if (!faults.empty()) {
+            so.link = [faults](std::uint32_t board) { return std::make_unique<FaultFilter>(faults, board); };
           }
+          xy_panel::Session session(so);
+          const bool ok = web::serve(xy_panel::routes(session, "axisproof panel: XY platform (seed 000)"),
+                                     xy_panel::web_options(a.port), ready, [] { return panel_stop_requested(); });
+          session.stop();
+          return ok;
         });
-      }
-    }
-    xy_panel::Options so;
-    so.domain = domain;
-    if (!a.faults.empty()) {
-      const auto faults = parse_faults(a.faults);
-      so.link = [faults](std::uint32_t board) { return std::make_unique<FaultFilter>(faults, board); };
-    }
-    so.boards.clear();
-    for (std::uint32_t b = 0; b < a.boards; ++b) so.boards.push_back(b);
-    int rc = 0;
-    {
-      xy_panel::Session session(so);
-      const bool ok = web::serve(
-          xy_panel::routes(session, "axisproof panel: XY platform (seed 000)"), xy_panel::web_options(a.port),
-          [&](int port) {
-            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-            std::printf("axisproof panel: http://127.0.0.1:%d/ (profile xy, %u board(s) %s on DDS domain %u%s; ready in %.2f s; Ctrl-C ends)\n",
-                        port, a.boards, a.attach ? "attached" : (a.target == "qemu" ? "in QEMU" : "in-process"), domain,
-                        a.faults.empty() ? "" : ", faults on the link", s);
-            std::fflush(stdout);
-          },
-          [] { return panel_stop_requested(); });
-      if (!ok) {
-        std::fprintf(stderr, "axisproof panel: cannot listen on 127.0.0.1:%d\n", a.port);
-        rc = 1;
-      }
-      session.stop();
-    }
-    stop = true;
-    for (auto& t : boards) t.join();
-    return rc;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "axisproof panel: %s\n", e.what());
     return 1;

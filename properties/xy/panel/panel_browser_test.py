@@ -8,18 +8,15 @@ which the page never shows) is the trace that proves the motion, not the page's 
 
 usage: panel_browser_test.py AXISPROOF OUT_DIR   (screenshots go to OUT_DIR)
 """
-import json
 import os
 import re
 import subprocess
 import sys
 import time
 import unittest
-import urllib.error
-import urllib.request
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "panel"))
+from panel_driver import PanelDriver  # noqa: E402  (properties/panel, shared by the profiles' panel tests)
 from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
@@ -30,71 +27,14 @@ AXISPROOF, OUT = sys.argv[1], sys.argv[2]
 USTEPS_PER_MM = 1600
 
 
-class Panel:
-    """One `axisproof panel` process and one headless chromium on its page."""
+class Panel(PanelDriver):
+    """The XY panel with one simulated board, its page showing the board found."""
 
     def __init__(self, *args):
-        self.proc = subprocess.Popen([AXISPROOF, "panel", "--port", "0", *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                     text=True)
         t0 = time.monotonic()
-        line = self.proc.stdout.readline()
-        m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
-        if not m:
-            self.proc.kill()
-            raise RuntimeError("axisproof panel did not start: " + line + self.proc.stdout.read())
-        self.url = "http://127.0.0.1:%s/" % m.group(1)
-        opts = webdriver.ChromeOptions()
-        opts.binary_location = "/usr/bin/chromium"
-        for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,1100"):
-            opts.add_argument(a)
-        self.driver = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=opts)
-        self.driver.get(self.url)
+        super().__init__(AXISPROOF, *args)
         self.wait(lambda: self.text("ble-indicator") == "not connected", "the page to find the board")
         self.ready_s = time.monotonic() - t0
-
-    def close(self):
-        self.driver.quit()
-        self.proc.terminate()
-        try:
-            self.proc.wait(10)
-        except subprocess.TimeoutExpired:
-            self.proc.kill()
-        self.proc.stdout.close()
-
-    # ---- helpers ----
-    def el(self, id_):
-        return self.driver.find_element(By.ID, id_)
-
-    def text(self, id_):
-        return self.el(id_).text
-
-    def click(self, id_):
-        self.el(id_).click()
-
-    def type(self, id_, value):
-        e = self.el(id_)
-        e.clear()
-        e.send_keys(value)
-
-    def wait(self, cond, what, timeout=20.0):
-        end = time.monotonic() + timeout
-        while time.monotonic() < end:
-            try:
-                if cond():
-                    return
-            except Exception:  # an element re-rendered under us: try again
-                pass
-            time.sleep(0.05)
-        raise AssertionError("timed out waiting for " + what)
-
-    def api(self, path, body=None):
-        req = urllib.request.Request(self.url + path.lstrip("/"), data=None if body is None else json.dumps(body).encode(),
-                                     headers={"Content-Type": "application/json"})
-        try:
-            with urllib.request.urlopen(req, timeout=10) as r:
-                return r.status, json.loads(r.read())
-        except urllib.error.HTTPError as e:
-            return e.code, json.loads(e.read())
 
     def board(self):
         return self.api("/api/state")[1]["boards"][0]
@@ -114,8 +54,7 @@ class Panel:
         self.driver.find_element(By.CSS_SELECTOR, ".menu[data-panel='%s']" % name).click()
 
     def shot(self, name):
-        os.makedirs(OUT, exist_ok=True)
-        self.driver.save_screenshot(os.path.join(OUT, name + ".png"))
+        super().shot(OUT, name)
 
 
 class XyPanel(unittest.TestCase):
@@ -142,7 +81,8 @@ class XyPanel(unittest.TestCase):
         chain = ActionChains(self.p.driver)
         chain.key_down(Keys.ARROW_RIGHT).perform()
         self.p.wait(lambda: self.p.usteps(0) > x0 + USTEPS_PER_MM // 10, "X to move on a held arrow key")
-        self.assertIn(self.p.el("x-status").get_attribute("data-status"), ("accel", "const"))
+        # The page shows the motion too (its state arrives every 100 ms).
+        self.p.wait(lambda: self.p.el("x-status").get_attribute("data-status") in ("accel", "const"), "the page to show the jog")
         ActionChains(self.p.driver).key_up(Keys.ARROW_RIGHT).perform()
         self.wait_rest(0)
         stopped_at = self.p.usteps(0)

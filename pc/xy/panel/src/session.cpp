@@ -118,15 +118,26 @@ Session::Session(Options o) : opt_(std::move(o)) {
     if (opt_.link) b->link = opt_.link(id);
     boards_.push_back(std::move(b));
   }
-  state_ = json::object();
-  thread_ = std::thread([this] { loop(); });
+  event({{"type", "connection"}, {"board", -1}, {"what", "search started (BleDeviceStartScanningEvent)"}});
+  loop_ = std::make_unique<web::PacedLoop>(
+      opt_.period_us, [this](std::int64_t t) { step(t); },
+      [this](const std::string& what) { event({{"type", "error"}, {"board", -1}, {"what", what}}); });
 }
 
 Session::~Session() { stop(); }
 
 void Session::stop() {
-  stop_ = true;
-  if (thread_.joinable()) thread_.join();
+  if (loop_) loop_->stop();
+  // Anything still waiting gets an answer, so no HTTP thread hangs.
+  std::lock_guard<std::mutex> l(mu_);
+  for (auto& p : pending_) {
+    if (p->kind == Pending::Kind::Env) {
+      p->reply.set_value("err the panel is shutting down");
+    } else {
+      p->accepted.set_value({false, "the panel is shutting down", 0});
+    }
+  }
+  pending_.clear();
 }
 
 json Session::tables() {
@@ -237,48 +248,7 @@ std::string Session::env(std::uint32_t board, const std::string& line) {
   return f.get();
 }
 
-json Session::snapshot(std::uint64_t after) const {
-  std::lock_guard<std::mutex> l(mu_);
-  json s = state_;
-  s["events"] = json::array();
-  for (const auto& e : events_) {
-    if (e["id"].get<std::uint64_t>() > after) s["events"].push_back(e);
-  }
-  return s;
-}
-
-void Session::event(json e) {
-  std::lock_guard<std::mutex> l(mu_);
-  e["id"] = next_event_++;
-  events_.push_back(std::move(e));
-  while (events_.size() > 500) events_.pop_front();
-}
-
-void Session::loop() {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  std::int64_t t = 0;
-  event({{"type", "connection"}, {"board", -1}, {"what", "search started (BleDeviceStartScanningEvent)"}});
-  while (!stop_) {
-    try {
-      step(t);
-    } catch (const std::exception& e) {
-      event({{"type", "error"}, {"board", -1}, {"what", e.what()}});
-    }
-    t += opt_.period_us;
-    std::this_thread::sleep_until(start + std::chrono::microseconds(t));
-  }
-  // Anything still waiting gets an answer, so no HTTP thread hangs.
-  std::lock_guard<std::mutex> l(mu_);
-  for (auto& p : pending_) {
-    if (p->kind == Pending::Kind::Env) {
-      p->reply.set_value("err the panel is shutting down");
-    } else {
-      p->accepted.set_value({false, "the panel is shutting down", 0});
-    }
-  }
-  pending_.clear();
-}
+json Session::snapshot(std::uint64_t after) const { return pub_.snapshot(after); }
 
 void Session::step(std::int64_t t) {
   std::deque<std::unique_ptr<Pending>> work;
@@ -466,9 +436,7 @@ void Session::step(std::int64_t t) {
                       {"link", {{"sent", cn.sent}, {"retransmissions", cn.retransmissions}, {"delivered", cn.delivered},
                                 {"failed", cn.failed}, {"link_down", b.client ? b.client->link_down() : false}}}});
   }
-  std::lock_guard<std::mutex> l(mu_);
-  state_["t_us"] = t;
-  state_["boards"] = std::move(boards);
+  pub_.state({{"t_us", t}, {"boards", std::move(boards)}});
 }
 
 }  // namespace ap::xy_panel

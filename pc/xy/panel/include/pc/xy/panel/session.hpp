@@ -8,7 +8,6 @@
 // hand it requests through a locked queue and read a snapshot it publishes every step.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -16,10 +15,13 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "pc/web/paced_loop.hpp"
+#include "pc/web/published.hpp"
 
 namespace ap::xy_panel {
 
@@ -91,19 +93,15 @@ class Session {
  private:
   struct Board;
   struct Pending;
-  void loop();
   void step(std::int64_t t);
-  void event(nlohmann::json e);
+  void event(nlohmann::json e) { pub_.event(std::move(e)); }
 
   Options opt_;
   std::vector<std::unique_ptr<Board>> boards_;
-  mutable std::mutex mu_;
+  std::mutex mu_;  // pending_
   std::deque<std::unique_ptr<Pending>> pending_;
-  nlohmann::json state_;
-  std::deque<nlohmann::json> events_;
-  std::uint64_t next_event_ = 1;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
+  web::Published pub_;
+  std::unique_ptr<web::PacedLoop> loop_;  // last: it runs step() on the members above
 };
 
 }  // namespace ap::xy_panel
