@@ -350,6 +350,19 @@ TEST(PathChainRules, APcThatFillsTheQueueAtOnceGetsSpaceAgain) {
   EXPECT_LT(r.chk.first_motion_tick(), r.chk.path_end_tick());
 }
 
+// A contour whose first chain runs at a unit arc's cap, sqrt(1000 * 1 / 2) = 22 moves/s, over
+// thousands of moves: it must end where it should, later than the 400 000 ticks the harness
+// used to allow (which made these false hangs), within the checker's live.end bound.
+void expect_a_slow_chain_ends(const std::vector<cr::Segment>& segs, const ap::xy_path::Limits& lim) {
+  const Streamed r = stream(segs, lim, 1);
+  EXPECT_TRUE(r.unexpected.empty()) << r.unexpected;
+  EXPECT_TRUE(r.chk.ok()) << r.chk.report();
+  EXPECT_FALSE(r.active);
+  EXPECT_EQ(r.delivered, segs.size());
+  EXPECT_EQ(r.pos, segs.back().end);
+  EXPECT_GT(r.chk.ticks(), 400000U);
+}
+
 // Two contours the random property found (seeds 8671320251570440452 and 4198763284520829351,
 // shrunk): a small arc early in a long tangent chain caps the whole chain (docs/cnc.md "Speeds":
 // the cap is the chain's), so the path runs for minutes at a few dozen moves/s. Both must end
@@ -369,15 +382,7 @@ TEST(PathChainRules, ALongChainCappedByAnEarlyUnitArcEnds) {
       {K::Line, {-4649, -2893}, {-4066, -1527}, {}},
       {K::ArcCcw, {-4066, -1527}, {-6555, -1916}, {-5432, -944}},
   };
-  const Streamed r = stream(segs, lim, 1);
-  EXPECT_TRUE(r.unexpected.empty()) << r.unexpected;
-  EXPECT_TRUE(r.chk.ok()) << r.chk.report();
-  EXPECT_FALSE(r.active);
-  EXPECT_EQ(r.delivered, segs.size());
-  EXPECT_EQ(r.pos, segs.back().end);
-  // The unit arc's cap, sqrt(1000 * 1 / 2) = 22 moves/s, holds its chain's thousands of moves:
-  // longer than the 400 000 ticks the harness used to allow, which made this a false hang.
-  EXPECT_GT(r.chk.ticks(), 400000U);
+  expect_a_slow_chain_ends(segs, lim);
 }
 
 TEST(PathChainRules, ALongChainCappedByAnEarlyUnitArcAndAFullCircleEnds) {
@@ -402,15 +407,7 @@ TEST(PathChainRules, ALongChainCappedByAnEarlyUnitArcAndAFullCircleEnds) {
       {K::ArcCw, {-1514, -2857}, {-1515, -2857}, {-1515, -2856}},
       {K::Line, {-1515, -2857}, {-1848, -2857}, {}},
   };
-  const Streamed r = stream(segs, lim, 1);
-  EXPECT_TRUE(r.unexpected.empty()) << r.unexpected;
-  EXPECT_TRUE(r.chk.ok()) << r.chk.report();
-  EXPECT_FALSE(r.active);
-  EXPECT_EQ(r.delivered, segs.size());
-  EXPECT_EQ(r.pos, segs.back().end);
-  // The unit arc's cap, sqrt(1000 * 1 / 2) = 22 moves/s, holds its chain's thousands of moves:
-  // longer than the 400 000 ticks the harness used to allow, which made this a false hang.
-  EXPECT_GT(r.chk.ticks(), 400000U);
+  expect_a_slow_chain_ends(segs, lim);
 }
 
 // Random contours, streamed one segment a tick or in bursts, every rule of the checker.

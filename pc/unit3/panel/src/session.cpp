@@ -182,11 +182,11 @@ void Session::step(std::int64_t t) {
     event({{"type", "sent"}, {"lines", p->lines}});
   }
   const std::vector<std::uint8_t> bytes(out.begin(), out.end());
-  const std::uint64_t seq = m.ep->send(bytes, static_cast<std::uint64_t>(t));
   std::optional<dds::EchoSample> echo;
-  for (int k = 0; k < 20 && !echo; ++k) {  // 2 s: a unit that does not answer has left
-    auto e = m.ep->take_echo(std::chrono::milliseconds(100));
-    if (e && e->cmd_seq == seq) echo = std::move(*e);
+  try {
+    echo = m.ep->step(bytes, static_cast<std::uint64_t>(t), std::chrono::seconds(2));
+  } catch (const dds::Error&) {
+    // No answer in 2 s: the unit has left the bus.
   }
   if (!echo) {
     m.on_bus = false;

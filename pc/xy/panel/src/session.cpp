@@ -363,11 +363,11 @@ void Session::step(std::int64_t t) {
     }
     if (b.link) bytes = b.link->to_board(t, bytes);
     const std::vector<std::uint8_t> out(bytes.begin(), bytes.end());
-    const std::uint64_t seq = b.ep->send(out, static_cast<std::uint64_t>(t));
     std::optional<dds::EchoSample> echo;
-    for (int k = 0; k < 20 && !echo; ++k) {  // 2 s: a board that does not answer has left
-      auto e = b.ep->take_echo(std::chrono::milliseconds(100));
-      if (e && e->cmd_seq == seq) echo = std::move(*e);
+    try {
+      echo = b.ep->step(out, static_cast<std::uint64_t>(t), std::chrono::seconds(2));
+    } catch (const dds::Error&) {
+      // No answer in 2 s: the board has left the bus.
     }
     if (!echo) {
       if (b.on_bus) event({{"type", "connection"}, {"board", b.id}, {"what", "gone from the bus: disconnected (BleDeviceDisconnectedEvent)"}});
