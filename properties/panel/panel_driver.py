@@ -20,13 +20,18 @@ class PanelDriver:
     def __init__(self, axisproof, *args, width=1400, height=1100):
         self.proc = subprocess.Popen([axisproof, "panel", "--port", "0", *args], stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT, text=True)
-        line = self.proc.stdout.readline()
-        m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
-        if not m:
-            self.proc.kill()
-            rest = self.proc.stdout.read()
-            self.proc.stdout.close()
-            raise RuntimeError("axisproof panel did not start: " + line + rest)
+        # Lines before the URL are the CLI's own (e.g. building the QEMU image first).
+        seen = ""
+        m = None
+        while m is None:
+            line = self.proc.stdout.readline()
+            seen += line
+            m = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+            if not line:
+                self.proc.kill()
+                self.proc.wait()
+                self.proc.stdout.close()
+                raise RuntimeError("axisproof panel did not start: " + seen)
         self.url = "http://127.0.0.1:%s/" % m.group(1)
         opts = webdriver.ChromeOptions()
         opts.binary_location = "/usr/bin/chromium"

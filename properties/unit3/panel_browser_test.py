@@ -96,6 +96,24 @@ class Unit3Panel(unittest.TestCase):
         self.wait(lambda: self.text("pos-0") == "0.000" and self.text("counter-1") == "0", "0 0 0")
         self.assertIn("C;", self.d.find_elements(By.CSS_SELECTOR, "#sent li")[0].text)
 
+    def test_the_units_settings_set_the_selection_boxes(self):
+        self.set_axis(0, "0.1", 3, 2)
+        self.set_axis(1, "0", 1, 5)
+        self.set_axis(2, "0", 4, 6)
+        self.d.find_element(By.ID, "send").click()
+        self.wait(lambda: "M314;" in self.d.find_elements(By.CSS_SELECTOR, "#sent li")[0].text, "the settings sent")
+        self.wait(lambda: self.state()["axes"][0]["mode"] == 3 and self.state()["axes"][2]["thread"] == 6, "the unit's settings reply")
+        # The operator changes the boxes without sending; reading the unit's settings sets them back.
+        for a in range(3):
+            Select(self.d.find_element(By.ID, "mode-%d" % a)).select_by_value("0")
+            Select(self.d.find_element(By.ID, "thread-%d" % a)).select_by_value("0")
+        self.d.find_element(By.ID, "get").click()
+        boxes = lambda: [(Select(self.d.find_element(By.ID, "mode-%d" % a)).first_selected_option.get_attribute("value"),
+                          Select(self.d.find_element(By.ID, "thread-%d" % a)).first_selected_option.get_attribute("value"))
+                         for a in range(3)]
+        self.wait(lambda: boxes() == [("3", "2"), ("1", "5"), ("4", "6")], "the boxes set from the unit's reply")
+        self.assertIn("G;", self.d.find_elements(By.CSS_SELECTOR, "#sent li")[0].text)
+
     def test_refusals_and_bad_input(self):
         before = self.state()["refused_requests"]
         for value, why in [("abc", "not a number"), ("1000", "outside"), ("", "empty"), ("1e2", "not a number")]:

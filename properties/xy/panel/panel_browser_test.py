@@ -187,7 +187,25 @@ class XyPanel(unittest.TestCase):
         self.p.click("dev-echo")
         self.p.wait(lambda: self.p.text("x-status") == "blocked: charger connected" and self.p.text("y-status") ==
                     "blocked: charger connected" and self.p.text("x-pos") == "42.500", "the simulated echo")
+        # The message timer shows the outgoing frame: a held key's jog rides in it.
+        self.p.click("dev-timer")
+        ActionChains(self.p.driver).key_down(Keys.ARROW_LEFT).perform()
+        self.p.wait(lambda: re.search(r"x=jog:-", self.p.text("dev-frame")), "the outgoing frame with the jog")
+        ActionChains(self.p.driver).key_up(Keys.ARROW_LEFT).perform()
         self.p.shot("panel-developer")
+
+    def test_rotation_graph_with_a_user_zero(self):
+        # Seed 000 §9.4.2: the rotation subscriber in a graph that can be saved, with a zero the
+        # user sets. The simulated platform turns to an absolute angle (docs/sim.md `rotate`).
+        status, r = self.p.api("/api/env", {"board": 0, "line": "rotate 30000"})
+        self.assertEqual(status, 200, r)
+        self.p.wait(lambda: self.p.text("rotation-rel") == "30.0°", "the turn to 30°", 30)
+        self.p.click("rotation-zero")
+        self.p.wait(lambda: self.p.text("rotation-rel") == "0.0°", "the user's zero")
+        self.p.api("/api/env", {"board": 0, "line": "rotate 15000"})
+        self.p.wait(lambda: self.p.text("rotation-rel") == "-15.0°", "the turn back by 15°", 30)
+        self.assertTrue(self.p.el("rotation-save").get_attribute("href").startswith("data:image/png;base64,"))
+        self.p.shot("panel-rotation")
 
     def test_bad_input_is_refused_in_the_page_and_never_sent(self):
         self.p.menu("absolute")
@@ -245,6 +263,25 @@ class XyPanelOverABadLink(unittest.TestCase):
             self.assertTrue(m, p.text("link-stats"))
             self.assertGreater(int(m.group(2)), 0, "no retry shown under a 30 % drop")
             p.shot("panel-link-storm")
+        finally:
+            p.close()
+
+
+class XyPanelOnQemu(unittest.TestCase):
+    """--target qemu: the board runs the XY release image under qemu-system-arm (docs/qemu.md);
+    the first run builds the image (m4 preset)."""
+
+    def test_moves_on_the_image(self):
+        p = Panel("--target", "qemu")
+        try:
+            p.connect()
+            p.menu("absolute")
+            p.type("abs-x", "3")
+            p.type("abs-y", "2")
+            p.click("abs-go")
+            p.wait(lambda: p.text("x-pos") == "3.000" and p.text("y-pos") == "2.000", "the targets on the image", 60)
+            self.assertEqual((p.usteps(0), p.usteps(1)), (3 * USTEPS_PER_MM, 2 * USTEPS_PER_MM))
+            self.assertIn(("goto", "done"), p.outcomes())
         finally:
             p.close()
 

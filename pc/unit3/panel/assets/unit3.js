@@ -7,6 +7,12 @@
 const $ = (id) => document.getElementById(id);
 let info = null;
 let thread = [0, 0, 0];
+// The unit's step modes and threads as its last settings reply said; a reply that changes them
+// (after `G;`, a Send or the unit's menu) sets the selection boxes (seed-001.md §7 [I]).
+// A reply that repeats what this page last sent leaves the boxes alone: the operator may already
+// have chosen the next settings.
+const reported = [{ mode: -1, thread: -1 }, { mode: -1, thread: -1 }, { mode: -1, thread: -1 }];
+const lastSent = [{ mode: -1, thread: -1 }, { mode: -1, thread: -1 }, { mode: -1, thread: -1 }];
 
 function refuse(why) { $("refusal").textContent = why; }
 
@@ -51,6 +57,7 @@ async function send() {
     th.push(Number($("thread-" + a).value));
   }
   thread = th;
+  for (let a = 0; a < 3; a++) { lastSent[a].mode = mode[a]; lastSent[a].thread = th[a]; }
   showSent(await post("/api/send", { um, mode, thread: th }));
 }
 
@@ -60,6 +67,11 @@ function render(s) {
   (s.axes || []).forEach((x, a) => {
     $("pos-" + a).textContent = (x.position_um / 1000).toFixed(3);
     $("counter-" + a).textContent = x.count;
+    for (const k of ["mode", "thread"]) {
+      if (x[k] < 0 || x[k] === reported[a][k]) continue;
+      reported[a][k] = x[k];
+      if (x[k] !== lastSent[a][k]) $(k + "-" + a).value = String(x[k]);
+    }
   });
   $("replies").textContent = (s.replies || []).join("\n");
   for (const e of s.events || []) {
@@ -81,6 +93,11 @@ async function start() {
   }
   $("send").addEventListener("click", send);
   $("zero").addEventListener("click", async () => showSent(await post("/api/clear", {})));
+  $("get").addEventListener("click", async () => {
+    // The answer sets the boxes, whatever this page sent before.
+    for (const r of reported.concat(lastSent)) { r.mode = -1; r.thread = -1; }
+    showSent(await post("/api/get", {}));
+  });
   const es = new EventSource("/api/events");
   es.onmessage = (m) => render(JSON.parse(m.data));
 }

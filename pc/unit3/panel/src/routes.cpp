@@ -68,6 +68,7 @@ web::Routes routes(Session& s, const std::string& title) {
     return std::pair<int, json>{sent.ok ? 200 : 400, sent_json(sent)};
   };
   r.posts["clear"] = [&s](const json&) { return std::pair<int, json>{200, sent_json(s.clear())}; };
+  r.posts["get"] = [&s](const json&) { return std::pair<int, json>{200, sent_json(s.get_settings())}; };
   return r;
 }
 

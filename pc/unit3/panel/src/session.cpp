@@ -138,6 +138,17 @@ Sent Session::clear() {
   return s;
 }
 
+Sent Session::get_settings() {
+  std::lock_guard<std::mutex> l(mu_);
+  auto p = std::make_unique<Pending>();
+  p->lines = {"G;"};
+  pending_.push_back(std::move(p));
+  Sent s;
+  s.ok = true;
+  s.lines = {"G;"};
+  return s;
+}
+
 json Session::snapshot(std::uint64_t after) const { return pub_.snapshot(after); }
 
 void Session::read(const std::string& line) {

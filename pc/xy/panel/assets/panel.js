@@ -4,7 +4,7 @@
 // the ranges come from the codec's table the server hands out (/api/info).
 "use strict";
 
-const state = { info: null, board: 0, boards: [], sleeping: false, hist: [], lastEvent: 0, held: {} };
+const state = { timer: null, info: null, board: 0, boards: [], sleeping: false, hist: [], lastEvent: 0, held: {}, rotZero: 0, rot: null, rotHist: [] };
 const $ = (id) => document.getElementById(id);
 
 async function post(path, body) {
@@ -115,6 +115,19 @@ function setup() {
   $("board-select").addEventListener("change", (e) => { state.board = Number(e.target.value); state.hist = []; });
   // developer extension
   const env = async (line) => { const j = await post("/api/env", { board: state.board, line }); $("dev-reply").textContent = line + ": " + (j.reply || j.error); };
+  // Thesis §8.3: a timer that shows, every 100 ms, the message the UI's commands make (here the
+  // frame the client last put on the wire, in the readable form of `axisproof frame`).
+  $("dev-timer").addEventListener("click", () => {
+    if (state.timer) { clearInterval(state.timer); state.timer = null; $("dev-timer").textContent = "Start the message timer"; return; }
+    state.timer = setInterval(() => {
+      const b = state.boards.find((x) => x.id === state.board);
+      $("dev-frame").textContent = b && b.last_frame ? b.last_frame : "-";
+    }, 100);
+    $("dev-timer").textContent = "Stop the message timer";
+  });
+  $("rotation-zero").addEventListener("click", () => {
+    if (state.rot !== null) { state.rotZero = state.rot; state.rotHist = []; }
+  });
   $("dev-charger-on").addEventListener("click", () => env("charger 1"));
   $("dev-charger-off").addEventListener("click", () => env("charger 0"));
   $("dev-usb-on").addEventListener("click", () => env("usb 1"));
@@ -175,6 +188,12 @@ function render(s) {
     $("charge").textContent = sb.charge_ma !== undefined ? sb.charge_ma + " mA" : "-";
     $("temperature").textContent = sb.temperature_mc !== undefined ? (sb.temperature_mc / 1000).toFixed(1) + " °C" : "-";
     $("rotation").textContent = sb.rotation_mdeg !== undefined ? (sb.rotation_mdeg / 1000).toFixed(1) + "°" : "-";
+    if (sb.rotation_mdeg !== undefined) {
+      state.rot = sb.rotation_mdeg;
+      state.rotHist.push(sb.rotation_mdeg - state.rotZero);
+      if (state.rotHist.length > 600) state.rotHist.shift();
+      $("rotation-rel").textContent = ((sb.rotation_mdeg - state.rotZero) / 1000).toFixed(1) + "°";
+    }
     const p = b.params || {};
     if (p.fast !== undefined) $("p-fast").textContent = mm(p.fast);
     if (p.slow !== undefined) $("p-slow").textContent = mm(p.slow);
@@ -208,7 +227,41 @@ function render(s) {
   plot();
 }
 
+// Seed 000 §9.4.2: the rotation subscriber plotted in a graph that can be saved, a coordinate
+// system turned by the angle, and a zero the user sets (on the PC side).
+function plotRotation() {
+  const c = $("plot-rotation"), g = c.getContext("2d");
+  g.fillStyle = "#fff";
+  g.fillRect(0, 0, c.width, c.height);
+  const h = state.rotHist;
+  if (h.length > 1) {
+    let lo = Math.min(...h), hi = Math.max(...h);
+    if (hi - lo < 1000) { hi += 500; lo -= 500; }
+    g.fillStyle = "#333";
+    g.fillText((hi / 1000).toFixed(1) + "°", 2, 10);
+    g.fillText((lo / 1000).toFixed(1) + "°", 2, c.height - 2);
+    g.strokeStyle = "#393";
+    g.beginPath();
+    h.forEach((v, i) => {
+      const x = (i / (h.length - 1)) * c.width, y = c.height - ((v - lo) / (hi - lo)) * (c.height - 14) - 7;
+      if (i === 0) g.moveTo(x, y); else g.lineTo(x, y);
+    });
+    g.stroke();
+  }
+  $("rotation-save").href = c.toDataURL("image/png");  // "Save graph" downloads what is drawn
+  const a = $("rotation-axes"), ga = a.getContext("2d");
+  ga.clearRect(0, 0, a.width, a.height);
+  const ang = state.rot === null ? 0 : -((state.rot - state.rotZero) / 1000) * Math.PI / 180;
+  ga.save();
+  ga.translate(a.width / 2, a.height / 2);
+  ga.rotate(ang);
+  ga.strokeStyle = "#c33"; ga.beginPath(); ga.moveTo(0, 0); ga.lineTo(55, 0); ga.stroke(); ga.fillText("x", 57, 4);
+  ga.strokeStyle = "#33c"; ga.beginPath(); ga.moveTo(0, 0); ga.lineTo(0, -55); ga.stroke(); ga.fillText("y", -3, -58);
+  ga.restore();
+}
+
 function plot() {
+  plotRotation();
   const h = state.hist;
   for (const [id, f] of [["plot-pos", (p) => [p.x, p.y]], ["plot-speed", null]]) {
     const c = $(id), g = c.getContext("2d");

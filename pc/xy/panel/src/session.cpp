@@ -11,7 +11,9 @@
 
 #include "core/xy/storage/fram_map.hpp"
 #include "pc/dds/bus.hpp"
+#include "core/xy/frame/command_codec.hpp"
 #include "pc/xy/client/client.hpp"
+#include "pc/xy/client/readable.hpp"
 #include "protocol/xy/codec/commands.hpp"
 #include "protocol/xy/codec/statuses.hpp"
 #include "protocol/xy/codec/subscribers.hpp"
@@ -106,6 +108,7 @@ struct Session::Board {
   std::int64_t prev_answer_us = 0;
   json subs = json::object();
   json params = json::object();
+  std::string last_frame;  // the last frame the client put on the wire, readable (xy_client::to_readable)
   dds::Telemetry truth{};
   std::uint32_t param_turn = 0;
 };
@@ -359,7 +362,12 @@ void Session::step(std::int64_t t) {
       const std::uint32_t turn = b.param_turn++ % (kShownParams.size() + 1);
       ex.subs[3] = turn == kShownParams.size() ? xy_frame::SubscriberSlot{SubscriberId::RotationMdeg, 0}
                                                : xy_frame::SubscriberSlot{SubscriberId::Param, static_cast<std::uint8_t>(kShownParams[turn])};
-      if (auto text = b.client->poll(t, ex)) bytes = *text;
+      if (auto text = b.client->poll(t, ex)) {
+        bytes = *text;
+        xy_frame::CommandFrame f;
+        const std::span<const std::uint8_t> raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+        if (xy_frame::parse_command(raw, f).ok()) b.last_frame = xy_client::to_readable(f);
+      }
     }
     if (b.link) bytes = b.link->to_board(t, bytes);
     const std::vector<std::uint8_t> out(bytes.begin(), bytes.end());
@@ -433,6 +441,7 @@ void Session::step(std::int64_t t) {
                       {"axes", axes},
                       {"subs", b.subs},
                       {"params", b.params},
+                      {"last_frame", b.last_frame},
                       {"link", {{"sent", cn.sent}, {"retransmissions", cn.retransmissions}, {"delivered", cn.delivered},
                                 {"failed", cn.failed}, {"link_down", b.client ? b.client->link_down() : false}}}});
   }

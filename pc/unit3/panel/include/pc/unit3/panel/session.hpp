@@ -53,6 +53,9 @@ class Session {
   Sent send(const SendRequest& r);
   // "0 0 0": `C;`, and the program's counters and positions go to 0.
   Sent clear();
+  // `G;`: the unit answers with its step modes and threads (`M…;T…;`), which the page's
+  // selection boxes take (seed-001.md §7 [I]).
+  Sent get_settings();
   nlohmann::json snapshot(std::uint64_t after) const;
   static nlohmann::json tables();
   void stop();
