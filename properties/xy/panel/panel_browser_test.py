@@ -53,6 +53,13 @@ class Panel(PanelDriver):
     def menu(self, name):
         self.driver.find_element(By.CSS_SELECTOR, ".menu[data-panel='%s']" % name).click()
 
+    def go_absolute(self, x, y):
+        """Automatic absolute: X and Y typed in mm, then Go."""
+        self.menu("absolute")
+        self.type("abs-x", x)
+        self.type("abs-y", y)
+        self.click("abs-go")
+
     def shot(self, name):
         super().shot(OUT, name)
 
@@ -100,10 +107,7 @@ class XyPanel(unittest.TestCase):
         self.wait_rest(1)
 
     def test_absolute_then_relative_move_reach_their_targets(self):
-        self.p.menu("absolute")
-        self.p.type("abs-x", "12.5")
-        self.p.type("abs-y", "7.25")
-        self.p.click("abs-go")
+        self.p.go_absolute("12.5", "7.25")
         self.p.wait(lambda: self.p.text("x-pos") == "12.500" and self.p.text("y-pos") == "7.250", "the absolute target", 30)
         self.p.shot("panel-absolute")
         self.assertEqual(self.p.usteps(0), int(12.5 * USTEPS_PER_MM))
@@ -169,10 +173,7 @@ class XyPanel(unittest.TestCase):
         self.p.wait(lambda: self.p.el("dev").is_displayed(), "the developer extension on Shift+V")
         self.p.click("dev-usb-on")
         self.p.wait(lambda: "USB" in self.p.text("dev-reply") or "usb" in self.p.text("dev-reply"), "the USB plug")
-        self.p.menu("absolute")
-        self.p.type("abs-x", "5")
-        self.p.type("abs-y", "5")
-        self.p.click("abs-go")
+        self.p.go_absolute("5", "5")
         self.p.wait(lambda: ("goto", "blocked") in self.p.outcomes(), "the blocked outcome")
         self.p.wait(lambda: self.p.text("x-status") == "blocked: USB connected", "the blocked status")
         self.assertEqual(self.p.usteps(0), 0)
@@ -275,10 +276,7 @@ class XyPanelOnQemu(unittest.TestCase):
         p = Panel("--target", "qemu")
         try:
             p.connect()
-            p.menu("absolute")
-            p.type("abs-x", "3")
-            p.type("abs-y", "2")
-            p.click("abs-go")
+            p.go_absolute("3", "2")
             p.wait(lambda: p.text("x-pos") == "3.000" and p.text("y-pos") == "2.000", "the targets on the image", 60)
             self.assertEqual((p.usteps(0), p.usteps(1)), (3 * USTEPS_PER_MM, 2 * USTEPS_PER_MM))
             self.assertIn(("goto", "done"), p.outcomes())
@@ -309,10 +307,7 @@ class XyPanelSessions(unittest.TestCase):
             p.driver.switch_to.new_window("tab")
             p.driver.get(p.url)
             p.wait(lambda: p.text("ble-indicator") == "connected", "the second tab to show the connection")
-            p.menu("absolute")
-            p.type("abs-x", "20")
-            p.type("abs-y", "0")
-            p.click("abs-go")
+            p.go_absolute("20", "0")
             p.driver.close()  # the tab goes while its command is on its way
             p.driver.switch_to.window(first)
             # The command still lands, once, and the first tab shows its outcome and the result.
@@ -330,10 +325,7 @@ class XyPanelSessions(unittest.TestCase):
         try:
             p = Panel("--attach", "--domain", str(domain))
             p.connect()
-            p.menu("absolute")
-            p.type("abs-x", "2")
-            p.type("abs-y", "1")
-            p.click("abs-go")
+            p.go_absolute("2", "1")
             p.wait(lambda: p.text("x-pos") == "2.000", "the attached board to move", 30)
             board.kill()
             board.wait()

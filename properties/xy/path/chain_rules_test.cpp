@@ -196,12 +196,17 @@ rc::Gen<ap::xy_path::Limits> gen_limits() {
 
 // ---- the checker on hand-made traces: each rule can fail ------------------------------------
 
-TEST(PathChainRules, TheCheckerCatchesASpeedAboveTheArcsCapAtTheJoin) {
+// The limits of the hand-made traces: v_max 1000 moves/s, a_max 2000, j_max 20000.
+cr::Config hand_made_config() {
   cr::Config c;
   c.v_max = 1000;
   c.a_max = 2000;
   c.j_max = 20000;
-  cr::ChainChecker k(c, {0, 0});
+  return c;
+}
+
+TEST(PathChainRules, TheCheckerCatchesASpeedAboveTheArcsCapAtTheJoin) {
+  cr::ChainChecker k(hand_made_config(), {0, 0});
   k.accepted({cr::Kind::Line, {0, 0}, {10, 0}, {}});
   k.accepted({cr::Kind::ArcCcw, {10, 0}, {10, 20}, {10, 10}});  // r 10: cap sqrt(2000 * 10) = 141
   k.path_end();
@@ -213,11 +218,7 @@ TEST(PathChainRules, TheCheckerCatchesASpeedAboveTheArcsCapAtTheJoin) {
 }
 
 TEST(PathChainRules, TheCheckerCatchesAFullQueueOfOneChainThatNeverStarts) {
-  cr::Config c;
-  c.v_max = 1000;
-  c.a_max = 2000;
-  c.j_max = 20000;
-  cr::ChainChecker k(c, {0, 0});
+  cr::ChainChecker k(hand_made_config(), {0, 0});
   for (std::int64_t s = 0; s < 16; ++s) k.accepted({cr::Kind::Line, {s * 10, 0}, {s * 10 + 10, 0}, {}});
   k.refused_queue_full();
   for (int t = 0; t < 2000 && k.ok(); ++t) k.tick({0, 0}, {0, 0}, {0, 0});
@@ -226,16 +227,12 @@ TEST(PathChainRules, TheCheckerCatchesAFullQueueOfOneChainThatNeverStarts) {
 }
 
 TEST(PathChainRules, TheCheckerCatchesACornerPassedAtSpeedAndAnOpenChainStarted) {
-  cr::Config c;
-  c.v_max = 1000;
-  c.a_max = 2000;
-  c.j_max = 20000;
-  cr::ChainChecker k(c, {0, 0});
+  cr::ChainChecker k(hand_made_config(), {0, 0});
   k.accepted({cr::Kind::Line, {0, 0}, {3, 0}, {}});
   k.tick({1, 0}, {100000, 0}, {1, 0});  // an open chain (no path_end, queue not full) moving
   ASSERT_FALSE(k.ok());
   EXPECT_EQ(k.violations().front().rule, "start.open");
-  cr::ChainChecker q(c, {0, 0});
+  cr::ChainChecker q(hand_made_config(), {0, 0});
   q.accepted({cr::Kind::Line, {0, 0}, {3, 0}, {}});
   q.accepted({cr::Kind::Line, {3, 0}, {3, 3}, {}});  // a 90 degree corner
   q.path_end();
@@ -247,11 +244,7 @@ TEST(PathChainRules, TheCheckerCatchesACornerPassedAtSpeedAndAnOpenChainStarted)
 }
 
 TEST(PathChainRules, TheCheckerCatchesAPathThatOutlastsItsChainsTime) {
-  cr::Config c;
-  c.v_max = 1000;
-  c.a_max = 2000;
-  c.j_max = 20000;
-  cr::ChainChecker k(c, {0, 0});
+  cr::ChainChecker k(hand_made_config(), {0, 0});
   k.accepted({cr::Kind::Line, {0, 0}, {100, 0}, {}});
   k.path_end();
   // 100 moves at a cap of 1000 moves/s take well under 2 s; this board creeps at 20 moves/s.

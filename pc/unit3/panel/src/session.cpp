@@ -118,36 +118,33 @@ Sent Session::send(const SendRequest& r) {
     sent_thread_[a] = r.thread[a];
     impl_->shown_thread[a] = r.thread[a];
   }
-  auto p = std::make_unique<Pending>();
-  p->lines = lines;
-  pending_.push_back(std::move(p));
+  queue_locked(lines, false);
   s.ok = true;
   s.lines = std::move(lines);
   return s;
 }
 
-Sent Session::clear() {
-  std::lock_guard<std::mutex> l(mu_);
+void Session::queue_locked(const std::vector<std::string>& lines, bool clear) {
   auto p = std::make_unique<Pending>();
-  p->lines = {"C;"};
-  p->clear = true;
+  p->lines = lines;
+  p->clear = clear;
   pending_.push_back(std::move(p));
+}
+
+Sent Session::send_one(unit3_wire::Kind kind) {
+  unit3_wire::Command c;
+  c.kind = kind;
   Sent s;
   s.ok = true;
-  s.lines = {"C;"};
+  s.lines = {line_of(c)};
+  std::lock_guard<std::mutex> l(mu_);
+  queue_locked(s.lines, kind == unit3_wire::Kind::Clear);
   return s;
 }
 
-Sent Session::get_settings() {
-  std::lock_guard<std::mutex> l(mu_);
-  auto p = std::make_unique<Pending>();
-  p->lines = {"G;"};
-  pending_.push_back(std::move(p));
-  Sent s;
-  s.ok = true;
-  s.lines = {"G;"};
-  return s;
-}
+Sent Session::clear() { return send_one(unit3_wire::Kind::Clear); }
+
+Sent Session::get_settings() { return send_one(unit3_wire::Kind::Get); }
 
 json Session::snapshot(std::uint64_t after) const { return pub_.snapshot(after); }
 

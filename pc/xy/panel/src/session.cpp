@@ -88,6 +88,7 @@ struct Session::Pending {
   int level = 0;
   bool on = false;
   std::string line;
+  xy_frame::AxisEcho echo{};  // SimEcho
   std::promise<Accepted> accepted;
   std::promise<std::string> reply;
 };
@@ -131,15 +132,10 @@ Session::~Session() { stop(); }
 
 void Session::stop() {
   if (loop_) loop_->stop();
-  // Anything still waiting gets an answer, so no HTTP thread hangs.
+  // Anything still waiting, or coming later, gets an answer, so no HTTP thread hangs.
   std::lock_guard<std::mutex> l(mu_);
-  for (auto& p : pending_) {
-    if (p->kind == Pending::Kind::Env) {
-      p->reply.set_value("err the panel is shutting down");
-    } else {
-      p->accepted.set_value({false, "the panel is shutting down", 0});
-    }
-  }
+  stopped_ = true;
+  for (auto& p : pending_) answer_shut_down(*p);
   pending_.clear();
 }
 
@@ -180,12 +176,7 @@ Accepted Session::submit(const Request& r) {
   p->kind = Pending::Kind::Command;
   p->board = r.board;
   p->command = {part, {c->id, static_cast<std::int32_t>(r.data)}};
-  auto f = p->accepted.get_future();
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    pending_.push_back(std::move(p));
-  }
-  return f.get();
+  return queue(std::move(p));
 }
 
 Accepted Session::hold(std::uint32_t board, int axis, int level) {
@@ -196,12 +187,7 @@ Accepted Session::hold(std::uint32_t board, int axis, int level) {
   p->board = board;
   p->axis = axis;
   p->level = level;
-  auto f = p->accepted.get_future();
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    pending_.push_back(std::move(p));
-  }
-  return f.get();
+  return queue(std::move(p));
 }
 
 Accepted Session::connect(std::uint32_t board, bool on) {
@@ -209,12 +195,7 @@ Accepted Session::connect(std::uint32_t board, bool on) {
   p->kind = Pending::Kind::Connect;
   p->board = board;
   p->on = on;
-  auto f = p->accepted.get_future();
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    pending_.push_back(std::move(p));
-  }
-  return f.get();
+  return queue(std::move(p));
 }
 
 Accepted Session::simulate_echo(std::uint32_t board, const std::string& status, std::int32_t data) {
@@ -228,14 +209,8 @@ Accepted Session::simulate_echo(std::uint32_t board, const std::string& status, 
   auto p = std::make_unique<Pending>();
   p->kind = Pending::Kind::SimEcho;
   p->board = board;
-  p->command.cmd.data = data;
-  p->level = static_cast<int>(st->id);
-  auto f = p->accepted.get_future();
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    pending_.push_back(std::move(p));
-  }
-  return f.get();
+  p->echo = {st->id, data};
+  return queue(std::move(p));
 }
 
 std::string Session::env(std::uint32_t board, const std::string& line) {
@@ -244,11 +219,31 @@ std::string Session::env(std::uint32_t board, const std::string& line) {
   p->board = board;
   p->line = line;
   auto f = p->reply.get_future();
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    pending_.push_back(std::move(p));
-  }
+  push(std::move(p));
   return f.get();
+}
+
+Accepted Session::queue(std::unique_ptr<Pending> p) {
+  auto f = p->accepted.get_future();
+  push(std::move(p));
+  return f.get();
+}
+
+void Session::push(std::unique_ptr<Pending> p) {
+  std::lock_guard<std::mutex> l(mu_);
+  if (stopped_) {
+    answer_shut_down(*p);
+    return;
+  }
+  pending_.push_back(std::move(p));
+}
+
+void Session::answer_shut_down(Pending& p) {
+  if (p.kind == Pending::Kind::Env) {
+    p.reply.set_value("err the panel is shutting down");
+  } else {
+    p.accepted.set_value({false, "the panel is shutting down", 0});
+  }
 }
 
 json Session::snapshot(std::uint64_t after) const { return pub_.snapshot(after); }
@@ -319,7 +314,7 @@ void Session::step(std::int64_t t) {
       continue;
     }
     if (p->kind == Pending::Kind::SimEcho) {
-      const xy_frame::AxisEcho e{static_cast<xy_codec::EchoStatus>(p->level), p->command.cmd.data};
+      const xy_frame::AxisEcho e = p->echo;
       b->simulated = {e, e};
       b->simulated_until_us = t + 3'000'000;
       event({{"type", "connection"}, {"board", b->id}, {"what", "simulated echo: " + status_key(e.status) + " on both axes"}});

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pc/unit3/panel/conversion.hpp"
+#include "protocol/unit3/wire/dialect.hpp"
 #include "pc/web/paced_loop.hpp"
 #include "pc/web/published.hpp"
 
@@ -64,6 +65,10 @@ class Session {
   void step(std::int64_t t);
   void event(nlohmann::json e) { pub_.event(std::move(e)); }
   void read(const std::string& line);
+  // The lines go to the unit with the loop's next step; the caller holds mu_.
+  void queue_locked(const std::vector<std::string>& lines, bool clear);
+  // A command without fields (`C;`, `G;`) in the wire's own format, queued.
+  Sent send_one(unit3_wire::Kind kind);
 
   struct Pending {
     std::vector<std::string> lines;

@@ -95,11 +95,17 @@ class Session {
   struct Pending;
   void step(std::int64_t t);
   void event(nlohmann::json e) { pub_.event(std::move(e)); }
+  // Hands a request to the loop (it takes it within one period) and waits for its answer; after
+  // stop() the answer is at once that the panel is shutting down.
+  Accepted queue(std::unique_ptr<Pending> p);
+  void push(std::unique_ptr<Pending> p);
+  static void answer_shut_down(Pending& p);
 
   Options opt_;
   std::vector<std::unique_ptr<Board>> boards_;
-  std::mutex mu_;  // pending_
+  std::mutex mu_;  // pending_, stopped_
   std::deque<std::unique_ptr<Pending>> pending_;
+  bool stopped_ = false;
   web::Published pub_;
   std::unique_ptr<web::PacedLoop> loop_;  // last: it runs step() on the members above
 };
