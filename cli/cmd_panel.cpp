@@ -1,6 +1,7 @@
-// axisproof panel: the operator's web panel of a profile (docs/panel.md). The profile's
-// adapter starts (or attaches to) its boards and serves the page; this file only reads the
-// arguments and turns Ctrl-C into an orderly stop.
+// axisproof panel: the operator's web panel of a profile (docs/panel.md). This file reads the
+// arguments, turns Ctrl-C into an orderly stop and, in panel_main, does what every profile's
+// panel does alike: the domain, the boards' threads (unless attached), the ready line; the
+// profile's adapter brings its board server, its session and its routes.
 #include <chrono>
 #include <csignal>
 #include <cstdio>
